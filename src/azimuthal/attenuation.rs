@@ -1,0 +1,49 @@
+use crate::fresnel::fresnel_dielectric;
+use crate::real::{safe_sqrt, Real};
+
+/// Number of lobes: R, TT, TRT and the residual (p >= 3).
+pub const LOBES: usize = 4;
+
+/// Attenuations [A_0, A_1, A_2, A_3+] from the Fresnel reflectance `f` at the entry point and
+/// the transmittance `t` of one internal segment (Chiang et al. 2016, eqs. 3 and 6; pbrt-v4
+/// `Ap`): `A_0 = f`, `A_1 = (1 - f)^2 t`, `A_2 = A_1 f t`, and the geometric series of all
+/// longer paths `A_3+ = A_2 f t / (1 - f t)`.
+///
+/// The residual is written as `(1 - f)^2 f^2 t^3 / max(1 - f t, tiny)`: at h = +-1 with no
+/// absorption `f = t = 1` and the true limit is 0, which the numerator gives exactly. For
+/// `t = 1` the four terms sum to 1.
+pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES] {
+    let one = R::c(1.0);
+    let a0 = f;
+    let a1 = (one - f).sqr() * t;
+    let a2 = a1 * f * t;
+    let a3 = a2 * f * t / (one - f * t).max(R::c(1e-30));
+    [a0, a1, a2, a3]
+}
+
+/// Attenuations for offset `h` of the ray inclined at theta_o (cosine `cos_theta_o`) with
+/// relative index `eta` and segment transmittance `t`: the entry Fresnel term is evaluated at
+/// the true angle of incidence, cos = cos(theta_o) cos(gamma_o), gamma_o = asin h.
+pub fn attenuations<R: Real>(cos_theta_o: R, eta: R, h: R, t: R) -> [R; LOBES] {
+    let cos_gamma_o = safe_sqrt(R::c(1.0) - h * h);
+    attenuations_from_fresnel(fresnel_dielectric(cos_theta_o * cos_gamma_o, eta), t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lossless_attenuations_sum_to_one_even_at_the_edge() {
+        for &h in &[0.0, 0.5, 0.99, 1.0, -1.0] {
+            for &cos_o in &[1.0, 0.5, 0.0] {
+                let a = attenuations(cos_o, 1.55_f64, h, 1.0);
+                let sum: f64 = a.iter().sum();
+                assert!((sum - 1.0).abs() < 1e-14, "h {h} cos {cos_o}: {a:?}");
+                assert!(a.iter().all(|x| x.is_finite() && *x >= 0.0));
+            }
+        }
+        let a = attenuations(1.0_f32, 1.55, 1.0, 1.0);
+        assert!(a.iter().all(|x| x.is_finite()), "{a:?}");
+    }
+}

@@ -1,0 +1,41 @@
+use crate::real::{pi, safe_asin, safe_sqrt, Real};
+
+/// The azimuthal exit angle of path p (p internal segments) entering at angle gamma_i and
+/// refracting to gamma_t: `Phi(p) = 2 p gamma_t - 2 gamma_i + p pi` (Marschner et al. 2003,
+/// eq. 3; pbrt-v4 `Phi`). `p` is a real so that traced code can select it.
+pub fn exit_angle<R: Real>(p: R, gamma_i: R, gamma_t: R) -> R {
+    R::c(2.0) * p * gamma_t - R::c(2.0) * gamma_i + p * pi::<R>()
+}
+
+/// sin(gamma_t) for offset h and a ray inclined at theta: Snell's law in the normal plane with
+/// Bravais' index eta' = sqrt(eta^2 - sin^2 theta) / cos theta, written as
+/// `h cos theta / sqrt(eta^2 - sin^2 theta)` so that grazing rays (cos theta = 0) give 0, not
+/// 0/0. Requires eta > 1.
+pub fn refracted_offset<R: Real>(h: R, eta: R, sin_theta: R) -> R {
+    let cos_theta = safe_sqrt(R::c(1.0) - sin_theta * sin_theta);
+    h * cos_theta / safe_sqrt(eta * eta - sin_theta * sin_theta)
+}
+
+/// Phi(p, h) for offset h in [-1, 1] and a ray inclined at theta (given by its sine):
+/// gamma_i = asin h, gamma_t = asin(h / eta').
+pub fn exit_angle_of_offset<R: Real>(p: R, h: R, eta: R, sin_theta: R) -> R {
+    let gamma_i = safe_asin(h);
+    let gamma_t = safe_asin(refracted_offset(h, eta, sin_theta));
+    exit_angle(p, gamma_i, gamma_t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn reflection_and_transmission_through_the_centre() {
+        // R at h = 0 reflects straight back: Phi = 0; TT at h = 0 goes straight through: pi.
+        assert_eq!(exit_angle_of_offset(0.0, 0.0, 1.55, 0.0), 0.0);
+        assert!((exit_angle_of_offset(1.0, 0.0, 1.55, 0.3) - PI).abs() < 1e-15);
+        // Grazing R at h = 1: Phi = -pi (the ray continues undeflected).
+        assert!((exit_angle_of_offset(0.0_f64, 1.0, 1.55, 0.0) + PI).abs() < 1e-15);
+        assert!(exit_angle_of_offset(2.0_f32, 1.0, 1.55, 1.0).is_finite());
+    }
+}

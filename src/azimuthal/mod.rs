@@ -1,0 +1,14 @@
+//! Azimuthal scattering in the fibre's normal plane: the exit angle Phi(p, h), the
+//! attenuations A_p(h), and the azimuthal roughness distributions D (trimmed logistic and
+//! wrapped Gaussian) with their sampling.
+
+mod attenuation;
+mod distribution;
+mod exit_angle;
+
+pub use attenuation::{attenuations, attenuations_from_fresnel, LOBES};
+pub use distribution::{
+    logistic, logistic_cdf, sample_trimmed_logistic, sample_wrapped_gaussian, trimmed_logistic,
+    wrapped_gaussian, WRAPPED_GAUSSIAN_TERMS,
+};
+pub use exit_angle::{exit_angle, exit_angle_of_offset, refracted_offset};

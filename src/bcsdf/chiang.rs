@@ -1,0 +1,387 @@
+//! The near-field hair BCSDF of Chiang et al. 2016 ("A Practical and Controllable Hair and Fur
+//! Model for Production Path Tracing") as pbrt-v4 defines it (`HairBxDF`).
+//!
+//! `S(wi, wo, h) = sum_{p=0}^{2} M_p(theta_i; theta_o^(p)) A_p(h) N_p(phi)
+//!               + M_3(theta_i; theta_o) A_3+(h) / (2 pi)`
+//!
+//! - `M_p` is d'Eon's lobe ([`crate::lobe::deon_lobe`]) with variances v_0 from beta_m
+//!   (Chiang eq. 7), v_1 = v_0 / 4, v_2 = v_3 = 4 v_0; the cuticle tilt alpha rotates theta_o by
+//!   -2 alpha for R, +alpha for TT and +4 alpha for TRT (pbrt-v4).
+//! - `A_p` are the attenuations of [`crate::azimuthal::attenuations`] with the exact chord
+//!   transmittance `exp(-sigma_a 2 cos gamma_t / cos theta_t)`.
+//! - `N_p(phi) = D(phi - Phi(p, gamma_o, gamma_t))`, D the trimmed logistic of scale s from
+//!   beta_n (Chiang eq. 8).
+//!
+//! **Contract.** `S` carries no cosine factor of any kind: with sigma_a = 0 its integral over all
+//! directions wi (solid angle) is 1 for every wo and h. pbrt's `f` equals `S / |cos theta_i|`
+//! with theta_i measured to the shading normal; Mitsuba 3's `hair` BSDF returns `S`.
+//!
+//! **Conventions (pbrt's, converted here).** Directions are in the local frame with the tangent
+//! along +X. The offset `h` in [-1, 1] locates the point where `wo`'s ray meets the fibre
+//! (gamma_o = asin h), and the relative azimuth of the lobes is phi_i - phi_o, the negative of
+//! [`crate::geometry::FibreAngles::phi`].
+
+use crate::absorption::{segment_transmittance, PathLength, Rgb};
+use crate::azimuthal::{
+    attenuations_from_fresnel, exit_angle, refracted_offset, sample_trimmed_logistic,
+    trimmed_logistic, LOBES,
+};
+use crate::error::ParamError;
+use crate::fresnel::fresnel_dielectric;
+use crate::geometry::{azimuth_between, local_direction, V3};
+use crate::lobe::{deon_lobe, deon_lobe_sample_cos_theta};
+use crate::real::{pi, safe_asin, safe_sqrt, wrap_angle, Real};
+
+/// Validated parameters of the Chiang 2016 model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ChiangParams {
+    beta_m: f64,
+    beta_n: f64,
+    alpha: f64,
+    eta: f64,
+    sigma_a: Rgb,
+}
+
+impl ChiangParams {
+    /// Checks and stores the parameters.
+    ///
+    /// - `beta_m`, `beta_n`: longitudinal and azimuthal roughness in (0, 1].
+    /// - `alpha`: cuticle tilt in radians, |alpha| < pi/2 (hair: about 2 degrees).
+    /// - `eta`: relative index of refraction, > 1 (hair: 1.55).
+    /// - `sigma_a`: absorption per unit fibre radius, finite and >= 0 per channel.
+    ///
+    /// # Errors
+    /// [`ParamError::OutOfRange`] naming the first parameter outside its domain.
+    pub fn new(
+        beta_m: f64,
+        beta_n: f64,
+        alpha: f64,
+        eta: f64,
+        sigma_a: Rgb,
+    ) -> Result<Self, ParamError> {
+        let roughness = "roughness must be in (0, 1]";
+        let beta_m = ParamError::check("beta_m", beta_m, roughness, |v| v > 0.0 && v <= 1.0)?;
+        let beta_n = ParamError::check("beta_n", beta_n, roughness, |v| v > 0.0 && v <= 1.0)?;
+        let alpha = ParamError::check(
+            "alpha",
+            alpha,
+            "the tilt must be finite with |alpha| < pi/2 radians",
+            |v| v.abs() < core::f64::consts::FRAC_PI_2,
+        )?;
+        let eta = ParamError::check(
+            "eta",
+            eta,
+            "the relative index of refraction must be > 1",
+            |v| v > 1.0,
+        )?;
+        for &s in &sigma_a {
+            ParamError::check(
+                "sigma_a",
+                s,
+                "absorption must be finite and >= 0 in every channel",
+                |v| v >= 0.0,
+            )?;
+        }
+        Ok(ChiangParams {
+            beta_m,
+            beta_n,
+            alpha,
+            eta,
+            sigma_a,
+        })
+    }
+
+    /// Longitudinal roughness beta_m.
+    pub fn beta_m(&self) -> f64 {
+        self.beta_m
+    }
+    /// Azimuthal roughness beta_n.
+    pub fn beta_n(&self) -> f64 {
+        self.beta_n
+    }
+    /// Cuticle tilt alpha, radians.
+    pub fn alpha(&self) -> f64 {
+        self.alpha
+    }
+    /// Relative index of refraction eta.
+    pub fn eta(&self) -> f64 {
+        self.eta
+    }
+    /// Absorption per unit radius.
+    pub fn sigma_a(&self) -> Rgb {
+        self.sigma_a
+    }
+}
+
+/// Longitudinal variance of the R lobe from beta_m (Chiang et al. 2016, eq. 7):
+/// `v = (0.726 b + 0.812 b^2 + 3.7 b^20)^2`.
+pub fn longitudinal_variance(beta_m: f64) -> f64 {
+    (0.726 * beta_m + 0.812 * beta_m * beta_m + 3.7 * beta_m.powi(20)).powi(2)
+}
+
+/// Logistic scale from beta_n (Chiang et al. 2016, eq. 8):
+/// `s = sqrt(pi/8) (0.265 b + 1.194 b^2 + 5.372 b^22)`.
+pub fn logistic_scale(beta_n: f64) -> f64 {
+    (core::f64::consts::PI / 8.0).sqrt()
+        * (0.265 * beta_n + 1.194 * beta_n * beta_n + 5.372 * beta_n.powi(22))
+}
+
+/// Number of per-material constants of [`ChiangHair`] ([`ChiangHair::constants`]).
+pub const CHIANG_CONSTANTS: usize = 12;
+
+/// The Chiang 2016 model ready to evaluate in the working precision `R`: the per-material
+/// constants are derived once in `f64` and rounded to `R`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ChiangHair<R> {
+    /// Longitudinal variances v_p for p = 0..3.
+    v: [R; LOBES],
+    /// Logistic scale s.
+    s: R,
+    /// sin and cos of alpha, 2 alpha and 4 alpha.
+    sin_2k_alpha: [R; 3],
+    cos_2k_alpha: [R; 3],
+    eta: R,
+    sigma_a: [R; 3],
+}
+
+/// One importance sample of [`ChiangHair::sample`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HairSample<R> {
+    /// The sampled incident direction (unit, local frame).
+    pub wi: V3<R>,
+    /// `S(wi, wo, h)` per channel (no cosine factor).
+    pub value: [R; 3],
+    /// The solid-angle density of `wi`; the estimator weight is `value / pdf`.
+    pub pdf: R,
+}
+
+/// Per-lobe quantities shared by evaluation and the pdf.
+struct Lobes<R> {
+    /// M_p N_p (and M_3 / 2 pi), no attenuation.
+    mn: [R; LOBES],
+    /// A_p per channel.
+    a: [[R; 3]; LOBES],
+}
+
+impl<R: Real> ChiangHair<R> {
+    /// Derives the model constants (pbrt-v4 `HairBxDF` constructor).
+    pub fn new(params: &ChiangParams) -> Self {
+        let v0 = longitudinal_variance(params.beta_m);
+        let mut sin = [params.alpha.sin(), 0.0, 0.0];
+        let mut cos = [(1.0 - sin[0] * sin[0]).max(0.0).sqrt(), 0.0, 0.0];
+        for k in 1..3 {
+            sin[k] = 2.0 * cos[k - 1] * sin[k - 1];
+            cos[k] = cos[k - 1] * cos[k - 1] - sin[k - 1] * sin[k - 1];
+        }
+        let constants: [f64; CHIANG_CONSTANTS] = [
+            v0,
+            0.25 * v0,
+            4.0 * v0,
+            4.0 * v0,
+            logistic_scale(params.beta_n),
+            sin[0],
+            sin[1],
+            sin[2],
+            cos[0],
+            cos[1],
+            cos[2],
+            params.eta,
+        ];
+        Self::from_constants(constants.map(R::c), params.sigma_a.map(R::c))
+    }
+
+    /// The model from constants in the order of [`ChiangHair::constants`] and the absorption
+    /// per unit radius. Shader code receives both as uniforms this way.
+    pub fn from_constants(c: [R; CHIANG_CONSTANTS], sigma_a: [R; 3]) -> Self {
+        ChiangHair {
+            v: [c[0], c[1], c[2], c[3]],
+            s: c[4],
+            sin_2k_alpha: [c[5], c[6], c[7]],
+            cos_2k_alpha: [c[8], c[9], c[10]],
+            eta: c[11],
+            sigma_a,
+        }
+    }
+
+    /// Absorption per unit radius.
+    pub fn sigma_a(&self) -> [R; 3] {
+        self.sigma_a
+    }
+
+    /// `[v_0, v_1, v_2, v_3, s, sin alpha, sin 2alpha, sin 4alpha, cos alpha, cos 2alpha,
+    /// cos 4alpha, eta]`: the material constants (sigma_a travels separately).
+    pub fn constants(&self) -> [R; CHIANG_CONSTANTS] {
+        [
+            self.v[0],
+            self.v[1],
+            self.v[2],
+            self.v[3],
+            self.s,
+            self.sin_2k_alpha[0],
+            self.sin_2k_alpha[1],
+            self.sin_2k_alpha[2],
+            self.cos_2k_alpha[0],
+            self.cos_2k_alpha[1],
+            self.cos_2k_alpha[2],
+            self.eta,
+        ]
+    }
+
+    /// theta_o rotated by the tilt of lobe p: -2 alpha (R), +alpha (TT), +4 alpha (TRT), none
+    /// for the residual. Returns (sin, |cos|).
+    fn tilted(&self, p: usize, sin_o: R, cos_o: R) -> (R, R) {
+        let (k, sign) = match p {
+            0 => (1, -1.0),
+            1 => (0, 1.0),
+            2 => (2, 1.0),
+            _ => return (sin_o, cos_o),
+        };
+        let (s, c) = (self.sin_2k_alpha[k] * R::c(sign), self.cos_2k_alpha[k]);
+        (sin_o * c + cos_o * s, (cos_o * c - sin_o * s).abs())
+    }
+
+    /// Geometry of the path through the fibre for wo and h: (gamma_o, gamma_t, per-channel
+    /// segment transmittance, entry Fresnel reflectance).
+    fn path(&self, sin_o: R, cos_o: R, h: R) -> (R, R, [R; 3], R) {
+        let one = R::c(1.0);
+        let sin_t = sin_o / self.eta;
+        let cos_t = safe_sqrt(one - sin_t * sin_t);
+        let sin_gamma_t = refracted_offset(h, self.eta, sin_o);
+        let cos_gamma_t = safe_sqrt(one - sin_gamma_t * sin_gamma_t);
+        let transmittance = self
+            .sigma_a
+            .map(|sa| segment_transmittance(sa, cos_gamma_t, cos_t, PathLength::Chord));
+        let fresnel = fresnel_dielectric(cos_o * safe_sqrt(one - h * h), self.eta);
+        (safe_asin(h), safe_asin(sin_gamma_t), transmittance, fresnel)
+    }
+
+    fn lobes(&self, wi: V3<R>, wo: V3<R>, h: R) -> Lobes<R> {
+        let one = R::c(1.0);
+        let h = h.clamp(-one, one);
+        let sin_o = wo.x.clamp(-one, one);
+        let cos_o = safe_sqrt(one - sin_o * sin_o);
+        let sin_i = wi.x.clamp(-one, one);
+        let cos_i = safe_sqrt(one - sin_i * sin_i);
+        let phi = azimuth_between(V3::c(1.0, 0.0, 0.0), normal_plane(wo), normal_plane(wi));
+        let (gamma_o, gamma_t, transmittance, fresnel) = self.path(sin_o, cos_o, h);
+        let per_channel = transmittance.map(|t| attenuations_from_fresnel(fresnel, t));
+        let a = core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
+        let mut mn = [R::c(0.0); LOBES];
+        for (p, slot) in mn.iter_mut().enumerate() {
+            let (sin_op, cos_op) = self.tilted(p, sin_o, cos_o);
+            let m = deon_lobe(self.v[p], sin_i, cos_i, sin_op, cos_op);
+            let n = if p < 3 {
+                let dphi = wrap_angle(phi - exit_angle(R::c(p as f64), gamma_o, gamma_t));
+                trimmed_logistic(dphi, self.s)
+            } else {
+                R::c(0.5 * core::f64::consts::FRAC_1_PI)
+            };
+            *slot = m * n;
+        }
+        Lobes { mn, a }
+    }
+
+    /// `S(wi, wo, h)` per channel, for unit `wi`, `wo` in the local frame and offset `h` in
+    /// [-1, 1] (clamped). No cosine factor (see the module documentation). Finite and
+    /// non-negative for every finite input.
+    pub fn eval(&self, wi: V3<R>, wo: V3<R>, h: R) -> [R; 3] {
+        let lobes = self.lobes(wi, wo, h);
+        core::array::from_fn(|c| {
+            let mut sum = R::c(0.0);
+            for p in 0..LOBES {
+                sum += lobes.mn[p] * lobes.a[p][c];
+            }
+            sum
+        })
+    }
+
+    /// The contribution `M_p A_p N_p` of each lobe (R, TT, TRT, residual) per channel; they sum
+    /// to [`ChiangHair::eval`].
+    pub fn eval_lobes(&self, wi: V3<R>, wo: V3<R>, h: R) -> [[R; 3]; LOBES] {
+        let lobes = self.lobes(wi, wo, h);
+        core::array::from_fn(|p| lobes.a[p].map(|a| lobes.mn[p] * a))
+    }
+
+    /// Probability of choosing each lobe when sampling from wo: the channel-averaged A_p,
+    /// normalised (pbrt-v4 `ApPDF`).
+    fn lobe_weights(a: &[[R; 3]; LOBES]) -> [R; LOBES] {
+        let avg = a.map(|ch| (ch[0] + ch[1] + ch[2]) * R::c(1.0 / 3.0));
+        let total = (avg[0] + avg[1] + avg[2] + avg[3]).max(R::c(1e-30));
+        avg.map(|x| x / total)
+    }
+
+    /// Solid-angle density of [`ChiangHair::sample`] choosing `wi` given `wo` and `h`.
+    pub fn pdf(&self, wi: V3<R>, wo: V3<R>, h: R) -> R {
+        let lobes = self.lobes(wi, wo, h);
+        let w = Self::lobe_weights(&lobes.a);
+        let mut pdf = R::c(0.0);
+        for p in 0..LOBES {
+            pdf += lobes.mn[p] * w[p];
+        }
+        pdf
+    }
+
+    /// Importance-samples wi given wo and h from three uniforms in [0, 1): `uc` chooses the lobe
+    /// (and, remapped, the azimuth), `u[0]` the longitudinal angle, `u[1]` the azimuth of the
+    /// longitudinal cone (d'Eon 2013; pbrt-v4 `Sample_f`). Branch-free, so it traces.
+    pub fn sample(&self, wo: V3<R>, h: R, u: [R; 2], uc: R) -> HairSample<R> {
+        let one = R::c(1.0);
+        let h = h.clamp(-one, one);
+        let sin_o = wo.x.clamp(-one, one);
+        let cos_o = safe_sqrt(one - sin_o * sin_o);
+        let (gamma_o, gamma_t, transmittance, fresnel) = self.path(sin_o, cos_o, h);
+        let per_channel = transmittance.map(|t| attenuations_from_fresnel(fresnel, t));
+        let a = core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
+        let w = Self::lobe_weights(&a);
+
+        // Choose p: the first lobe whose cumulative weight exceeds uc; remap uc into it.
+        let uc = uc.clamp(R::c(0.0), one);
+        let mut lower = R::c(0.0);
+        let mut chosen = [R::c(0.0); 6]; // p, lower, width, sin_op, cos_op, v_p
+        for p in 0..LOBES {
+            // The intervals [lower, upper) partition [0, 1]; the last one takes the rest.
+            let upper = if p == LOBES - 1 {
+                R::c(2.0)
+            } else {
+                lower + w[p]
+            };
+            let here = !uc.lt(lower) & uc.lt(upper);
+            let (sin_op, cos_op) = self.tilted(p, sin_o, cos_o);
+            let candidate = [R::c(p as f64), lower, w[p], sin_op, cos_op, self.v[p]];
+            for (slot, value) in chosen.iter_mut().zip(candidate) {
+                *slot = R::select(here, value, *slot);
+            }
+            lower += w[p];
+        }
+        let [p, lower, width, sin_op, cos_op, v] = chosen;
+        let uc = ((uc - lower) / width.max(R::c(1e-30))).clamp(R::c(0.0), R::c(1.0 - 1e-7));
+
+        // Longitudinal: sample the lobe about its axis, then rotate about the cone.
+        let cos_theta = deon_lobe_sample_cos_theta(v, u[0]);
+        let sin_theta = safe_sqrt(one - cos_theta * cos_theta);
+        // cos(2 pi u1), with the argument kept in [-pi, pi] for GPU accuracy.
+        let cos_phi = -(R::c(2.0) * pi::<R>() * u[1] - pi::<R>()).cos();
+        let sin_i = (-cos_theta * sin_op + sin_theta * cos_phi * cos_op).clamp(-one, one);
+        let cos_i = safe_sqrt(one - sin_i * sin_i);
+
+        // Azimuthal: logistic about Phi(p) for p < 3, uniform for the residual.
+        let is_residual = R::c(2.5).lt(p);
+        let dphi = R::select(
+            is_residual,
+            R::c(2.0) * pi::<R>() * uc,
+            exit_angle(p, gamma_o, gamma_t) + sample_trimmed_logistic(uc, self.s),
+        );
+        let phi_o = azimuth_between(V3::c(1.0, 0.0, 0.0), V3::c(0.0, 1.0, 0.0), wo);
+        let wi = local_direction(sin_i, cos_i, wrap_angle(phi_o + wrap_angle(dphi)));
+        HairSample {
+            wi,
+            value: self.eval(wi, wo, h),
+            pdf: self.pdf(wi, wo, h),
+        }
+    }
+}
+
+/// The projection of a local direction onto the fibre's normal plane (YZ).
+fn normal_plane<R: Real>(w: V3<R>) -> V3<R> {
+    V3::new(R::c(0.0), w.y, w.z)
+}

@@ -1,0 +1,117 @@
+//! Fresnel reflectance of a dielectric interface, and the Bravais virtual indices that reduce
+//! refraction by an inclined ray to refraction in the fibre's normal plane.
+
+use crate::real::{safe_sqrt, Real};
+
+/// Unpolarised Fresnel reflectance of light arriving from outside a dielectric of relative
+/// index `eta` at an angle whose cosine to the normal is `cos_i` (Born and Wolf, section 1.5;
+/// pbrt-v4 `FrDielectric`). A negative `cos_i` means the light arrives from inside: the
+/// relative index is then `1 / eta`. Total internal reflection gives 1.
+///
+/// `R = (r_par^2 + r_perp^2) / 2` with `r_par = (eta cos_i - cos_t) / (eta cos_i + cos_t)`,
+/// `r_perp = (cos_i - eta cos_t) / (cos_i + eta cos_t)` and Snell's law for `cos_t`.
+/// Requires `eta > 0`; `cos_i` is clamped to [-1, 1]. Returns a value in [0, 1].
+pub fn fresnel_dielectric<R: Real>(cos_i: R, eta: R) -> R {
+    let cos_i = cos_i.clamp(R::c(-1.0), R::c(1.0));
+    let inside = cos_i.lt(R::c(0.0));
+    let eta = R::select(inside, R::c(1.0) / eta, eta);
+    let cos_i = cos_i.abs();
+    let sin2_t = (R::c(1.0) - cos_i * cos_i) / (eta * eta);
+    let cos_t = safe_sqrt(R::c(1.0) - sin2_t);
+    let r_par = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    let r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    let r = (r_par * r_par + r_perp * r_perp) * R::c(0.5);
+    R::select(sin2_t.lt(R::c(1.0)), r.min(R::c(1.0)), R::c(1.0))
+}
+
+/// Schlick's approximation `R0 + (1 - R0)(1 - cos_i)^5` with `R0 = ((eta - 1)/(eta + 1))^2`
+/// (Schlick 1994, eq. 24), for light arriving from outside (`cos_i` clamped to [0, 1]).
+pub fn fresnel_schlick<R: Real>(cos_i: R, eta: R) -> R {
+    let r0 = ((eta - R::c(1.0)) / (eta + R::c(1.0))).sqr();
+    let m = R::c(1.0) - cos_i.clamp(R::c(0.0), R::c(1.0));
+    let m2 = m * m;
+    r0 + (R::c(1.0) - r0) * m2 * m2 * m
+}
+
+/// Bravais' virtual index for the perpendicular polarisation and the azimuthal (projected)
+/// geometry: `eta' = sqrt(eta^2 - sin^2 theta) / cos theta` (Marschner 2003, appendix B;
+/// Bravais 1845). Refraction of a ray inclined at `theta` to the normal plane, projected onto
+/// that plane, obeys Snell's law with `eta'`. Written as `sqrt(eta^2 - sin^2) / cos` with
+/// `cos theta` floored at 1e-30 so that grazing rays give a large finite index, not infinity.
+///
+/// Gerard (Fast Real-Time Shading for Polygonal Hair, eq. 8) prints `sqrt((1.55^2 - cos^2 theta_d + 1) / cos theta_d)`, which is not
+/// this expression (README, errata).
+pub fn bravais_eta_perpendicular<R: Real>(eta: R, sin_theta: R) -> R {
+    let cos_theta = safe_sqrt(R::c(1.0) - sin_theta * sin_theta).max(R::c(1e-30));
+    safe_sqrt(eta * eta - sin_theta * sin_theta) / cos_theta
+}
+
+/// Bravais' virtual index for the parallel polarisation:
+/// `eta'' = eta^2 cos theta / sqrt(eta^2 - sin^2 theta)` (Marschner 2003, appendix B).
+/// Requires `eta > 1`.
+pub fn bravais_eta_parallel<R: Real>(eta: R, sin_theta: R) -> R {
+    let cos_theta = safe_sqrt(R::c(1.0) - sin_theta * sin_theta);
+    eta * eta * cos_theta / safe_sqrt(eta * eta - sin_theta * sin_theta)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn normal_incidence_matches_closed_form() {
+        for &eta in &[1.01_f64, 1.33, 1.55, 2.4] {
+            let r0: f64 = ((eta - 1.0) / (eta + 1.0)).powi(2);
+            assert!((fresnel_dielectric(1.0, eta) - r0).abs() < 1e-15);
+            assert!((fresnel_schlick(1.0, eta) - r0).abs() < 1e-15);
+            assert!(
+                (fresnel_dielectric(-1.0, eta) - r0).abs() < 1e-15,
+                "reciprocal at normal"
+            );
+        }
+    }
+
+    #[test]
+    fn grazing_total_reflection_and_brewster() {
+        let eta = 1.55_f64;
+        assert_eq!(fresnel_dielectric(0.0, eta), 1.0);
+        // Inside the fibre past the critical angle sin c = 1/eta: total internal reflection.
+        let crit_cos = (1.0 - 1.0 / (eta * eta)).sqrt();
+        assert_eq!(fresnel_dielectric(-(crit_cos - 1e-6), eta), 1.0);
+        // At Brewster's angle tan theta = eta the parallel term vanishes:
+        // R = r_perp^2 / 2 with r_perp = cos(theta_i + theta_t) / ... = (1 - eta^2)/(1 + eta^2).
+        let cos_b = 1.0 / (1.0 + eta * eta).sqrt();
+        let r_perp: f64 = (1.0 - eta * eta) / (1.0 + eta * eta);
+        assert!((fresnel_dielectric(cos_b, eta) - 0.5 * r_perp * r_perp).abs() < 1e-14);
+    }
+
+    #[test]
+    fn bravais_indices_reproduce_snell_in_projection() {
+        // A ray inclined at theta refracts to theta_t with sin theta_t = sin theta / eta. Its
+        // projection onto the normal plane refracts with eta' (Marschner 2003, appendix B):
+        // for incidence gamma in the plane, sin gamma = eta' sin gamma_t, where the 3D
+        // refracted direction is obtained from the vector form of Snell's law.
+        let eta = 1.55_f64;
+        for &theta in &[0.0, 0.3, 0.9, 1.4] {
+            for &gamma in &[0.1, 0.6, 1.2] {
+                let d = glam::DVec3::new(
+                    theta.sin(),
+                    -theta.cos() * gamma.cos(),
+                    theta.cos() * gamma.sin(),
+                );
+                let n = glam::DVec3::new(0.0, 1.0, 0.0); // surface normal of the cylinder at the hit
+                let cos_i = -d.dot(n);
+                let k = 1.0 / eta;
+                let t = d * k + n * (k * cos_i - (1.0 - k * k * (1.0 - cos_i * cos_i)).sqrt());
+                let gamma_t = t.z.atan2(-t.y);
+                let ep = bravais_eta_perpendicular(eta, theta.sin());
+                assert!(
+                    (gamma.sin() - ep * gamma_t.sin()).abs() < 1e-12,
+                    "theta {theta} gamma {gamma}"
+                );
+            }
+        }
+        assert!(bravais_eta_perpendicular(1.55_f32, 1.0).is_finite());
+        assert!((bravais_eta_parallel(1.55_f64, 0.0) - 1.55).abs() < 1e-15);
+    }
+}

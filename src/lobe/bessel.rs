@@ -1,0 +1,171 @@
+//! The modified Bessel function I0, in the scaled logarithmic form the lobes need:
+//! `log_i0e(x) = ln(I0(x) e^-x)`, which is finite and smooth for all x >= 0 (it behaves like
+//! `-ln(2 pi x) / 2` for large x), so lobes of variance 1e-4 (arguments up to 1e4) never
+//! overflow.
+//!
+//! Two approximations, chosen by precision ([`Real::DOUBLE`]):
+//! - `f64`: the power series `I0(x) = sum_k (x^2/4)^k / (k!)^2` (42 terms) for x < 20 and
+//!   the asymptotic series `I0(x) ~ e^x / sqrt(2 pi x) sum_k ((2k-1)!!)^2 / (k! (8x)^k)`
+//!   (24 terms) above (Abramowitz and Stegun 9.6.10 and 9.7.1). Measured against direct
+//!   quadrature of `I0(x) = (1/pi) int_0^pi e^(x cos t) dt`: relative error below 1e-13.
+//! - single precision and traced code: the polynomial fits of Abramowitz and Stegun 9.8.1
+//!   (|x| <= 3.75, absolute error < 1.6e-7 on I0 >= 1) and 9.8.2 (x >= 3.75, absolute error
+//!   < 1.9e-7 on sqrt(x) e^-x I0(x) >= 0.3989), so relative error below 4.8e-7; evaluated in
+//!   f32 the rounding of the logarithms keeps the total below 1e-6 (both measured by the tests).
+
+use crate::real::{horner, Real};
+
+const SERIES_END: f64 = 20.0;
+const SERIES_TERMS: usize = 42;
+const ASYMPTOTIC_TERMS: usize = 24;
+
+/// Power-series coefficients 1/(k!)^2 of I0 in x^2/4.
+const SERIES: [f64; SERIES_TERMS] = {
+    let mut c = [1.0; SERIES_TERMS];
+    let mut k = 1;
+    while k < SERIES_TERMS {
+        c[k] = c[k - 1] / ((k * k) as f64);
+        k += 1;
+    }
+    c
+};
+
+/// Asymptotic-series coefficients ((2k-1)!!)^2 / k! of sqrt(2 pi x) e^-x I0(x) in 1/(8x).
+const ASYMPTOTIC: [f64; ASYMPTOTIC_TERMS] = {
+    let mut c = [1.0; ASYMPTOTIC_TERMS];
+    let mut k = 1;
+    while k < ASYMPTOTIC_TERMS {
+        c[k] = c[k - 1] * (((2 * k - 1) * (2 * k - 1)) as f64) / (k as f64);
+        k += 1;
+    }
+    c
+};
+
+/// `ln(I0(x) e^-x)` for `x >= 0` (negative arguments are treated as 0).
+pub fn log_i0e<R: Real>(x: R) -> R {
+    let x = x.max(R::c(0.0));
+    if R::DOUBLE {
+        log_i0e_double(x)
+    } else {
+        log_i0e_single(x)
+    }
+}
+
+/// `ln I0(x)` for `x >= 0`.
+pub fn log_i0<R: Real>(x: R) -> R {
+    log_i0e(x) + x.max(R::c(0.0))
+}
+
+/// `I0(x)` for `|x|` up to about 700 in f64 (it overflows beyond).
+pub fn i0<R: Real>(x: R) -> R {
+    log_i0(x.abs()).exp()
+}
+
+fn log_i0e_double<R: Real>(x: R) -> R {
+    // Power series in y = x^2/4 with coefficients 1/(k!)^2, evaluated by Horner's rule.
+    let small = x.min(R::c(SERIES_END));
+    let y = small * small * R::c(0.25);
+    let series = horner(y, &SERIES).ln() - small;
+    // Asymptotic series in t = 1/(8x): term_k = term_{k-1} (2k-1)^2 t / k.
+    let large = x.max(R::c(SERIES_END));
+    let t = R::c(0.125) / large;
+    let asymptotic =
+        horner(t, &ASYMPTOTIC).ln() - R::c(0.5) * (R::c(2.0 * core::f64::consts::PI) * large).ln();
+    R::select(x.lt(R::c(SERIES_END)), series, asymptotic)
+}
+
+/// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75.
+const AS_9_8_1: [f64; 7] = [
+    1.0, 3.5156229, 3.0899424, 1.2067492, 0.2659732, 0.0360768, 0.0045813,
+];
+/// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75.
+const AS_9_8_2: [f64; 9] = [
+    0.39894228,
+    0.01328592,
+    0.00225319,
+    -0.00157565,
+    0.00916281,
+    -0.02057706,
+    0.02635537,
+    -0.01647633,
+    0.00392377,
+];
+
+fn log_i0e_single<R: Real>(x: R) -> R {
+    let small = x.min(R::c(3.75));
+    let t = small * R::c(1.0 / 3.75);
+    let near = horner(t * t, &AS_9_8_1).ln() - small;
+    let large = x.max(R::c(3.75));
+    let far = horner(R::c(3.75) / large, &AS_9_8_2).ln() - R::c(0.5) * large.ln();
+    R::select(x.lt(R::c(3.75)), near, far)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Independent reference: e^-x I0(x) = (1/pi) int_0^pi e^(x (cos t - 1)) dt by the
+    /// trapezoid rule, which converges geometrically for this periodic integrand; the node count
+    /// is doubled until two estimates agree to 4e-15 relative (then both are at rounding level).
+    fn i0e_by_quadrature(x: f64) -> f64 {
+        let estimate = |n: usize| {
+            let h = std::f64::consts::PI / n as f64;
+            let f = |t: f64| (x * (t.cos() - 1.0)).exp();
+            let inner: f64 = (1..n).map(|k| f(k as f64 * h)).sum();
+            (inner + 0.5 * (f(0.0) + f(std::f64::consts::PI))) * h / std::f64::consts::PI
+        };
+        let mut n = 64;
+        let mut prev = estimate(n);
+        loop {
+            n *= 2;
+            let next = estimate(n);
+            if (next - prev).abs() <= 4e-15 * next {
+                return next;
+            }
+            assert!(
+                n < 1 << 22,
+                "quadrature for x = {x} did not converge: {prev} {next}"
+            );
+            prev = next;
+        }
+    }
+
+    fn arguments() -> Vec<f64> {
+        let mut xs = vec![
+            0.0, 1e-8, 0.3, 1.0, 3.74, 3.75, 3.76, 7.5, 14.99, 19.99, 20.0, 20.01, 40.0,
+        ];
+        xs.extend([1e2, 1e3, 1e4]);
+        xs
+    }
+
+    #[test]
+    fn double_precision_is_accurate_to_1e_13() {
+        for x in arguments() {
+            let want = i0e_by_quadrature(x).ln();
+            let got = log_i0e(x);
+            // ln accuracy relative to I0 accuracy: |d ln I0| = |dI0/I0|.
+            assert!((got - want).abs() < 1e-13, "x = {x}: {got} vs {want}");
+        }
+        assert!((i0(1.0_f64) - 1.266_065_877_752_008_4).abs() < 1e-15);
+    }
+
+    #[test]
+    fn single_precision_polynomials_meet_their_published_bound() {
+        for x in arguments() {
+            let want = i0e_by_quadrature(x);
+            // The polynomials themselves, in f64: A&S's bounds are absolute, 1.6e-7 on I0 >= 1
+            // and 1.9e-7 on sqrt(x) e^-x I0 >= 0.3989, so at most 4.8e-7 relative.
+            let poly = log_i0e_single(x).exp();
+            assert!(
+                ((poly - want) / want).abs() < 4.8e-7,
+                "x = {x}: {poly} vs {want}"
+            );
+            // Evaluated in f32: the bound plus the rounding of ln and exp.
+            let got = (log_i0e(x as f32) as f64).exp();
+            assert!(
+                ((got - want) / want).abs() < 1e-6,
+                "x = {x}: {got} vs {want}"
+            );
+        }
+    }
+}

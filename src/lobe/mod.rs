@@ -1,0 +1,11 @@
+//! Longitudinal scattering lobes M(theta): Marschner's Gaussian, the Henyey-Greenstein lobe as
+//! Gerard uses it, and d'Eon's energy-conserving lobe with its log-space Bessel function.
+
+pub mod bessel;
+mod deon;
+mod gaussian;
+mod henyey_greenstein;
+
+pub use deon::{deon_lobe, deon_lobe_sample_cos_theta};
+pub use gaussian::gaussian_lobe;
+pub use henyey_greenstein::{hg_gerard_printed, HenyeyGreenstein};

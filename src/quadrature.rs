@@ -1,0 +1,126 @@
+//! Deterministic quadrature for reference integrals (plain `f64`, not generic): composite
+//! Gauss-Legendre rules on intervals and a product rule over the sphere of directions.
+
+use crate::geometry::{local_direction, V3};
+
+/// Nodes and weights of the n-point Gauss-Legendre rule on [-1, 1], by Newton's method on the
+/// Legendre three-term recurrence (Abramowitz and Stegun 25.4.29; initial guesses
+/// cos(pi (i - 1/4) / (n + 1/2))). Exact for polynomials of degree 2n - 1.
+pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+    let mut rule = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut x = (core::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+        let mut derivative = 0.0;
+        for _ in 0..100 {
+            let (p, dp) = legendre_and_derivative(n, x);
+            derivative = dp;
+            let step = p / dp;
+            x -= step;
+            if step.abs() < 1e-16 {
+                break;
+            }
+        }
+        let (_, dp) = legendre_and_derivative(n, x);
+        derivative = if dp != 0.0 { dp } else { derivative };
+        rule.push((x, 2.0 / ((1.0 - x * x) * derivative * derivative)));
+    }
+    rule
+}
+
+/// P_n(x) and P_n'(x) by the recurrence (k + 1) P_{k+1} = (2k + 1) x P_k - k P_{k-1}.
+fn legendre_and_derivative(n: usize, x: f64) -> (f64, f64) {
+    let (mut p0, mut p1) = (1.0, x);
+    for k in 1..n {
+        let p2 = ((2 * k + 1) as f64 * x * p1 - k as f64 * p0) / (k + 1) as f64;
+        p0 = p1;
+        p1 = p2;
+    }
+    let dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+    (p1, dp)
+}
+
+/// Integrates `f` over [a, b] with `panels` equal panels of the `rule`.
+pub fn integrate(
+    rule: &[(f64, f64)],
+    panels: usize,
+    a: f64,
+    b: f64,
+    mut f: impl FnMut(f64) -> f64,
+) -> f64 {
+    let width = (b - a) / panels as f64;
+    let mut sum = 0.0;
+    for k in 0..panels {
+        let centre = a + (k as f64 + 0.5) * width;
+        for &(x, w) in rule {
+            sum += w * f(centre + 0.5 * width * x);
+        }
+    }
+    0.5 * width * sum
+}
+
+/// A product rule over the unit sphere in the fibre's local frame (tangent +X):
+/// composite Gauss-Legendre in theta in [-pi/2, pi/2] with weight cos(theta), and the midpoint
+/// rule with `azimuths` nodes in phi, which converges geometrically for smooth periodic
+/// integrands.
+#[derive(Clone, Debug)]
+pub struct SphereRule {
+    /// (direction, weight) pairs; weights sum to 4 pi.
+    pub nodes: Vec<(V3<f64>, f64)>,
+}
+
+impl SphereRule {
+    /// `theta_panels` panels of an `order`-point rule in theta, `azimuths` nodes in phi.
+    pub fn new(theta_panels: usize, order: usize, azimuths: usize) -> Self {
+        let rule = gauss_legendre(order);
+        let half_pi = core::f64::consts::FRAC_PI_2;
+        let width = 2.0 * half_pi / theta_panels as f64;
+        let dphi = 2.0 * core::f64::consts::PI / azimuths as f64;
+        let mut nodes = Vec::with_capacity(theta_panels * order * azimuths);
+        for k in 0..theta_panels {
+            let centre = -half_pi + (k as f64 + 0.5) * width;
+            for &(x, w) in &rule {
+                let theta = centre + 0.5 * width * x;
+                let wt = 0.5 * width * w * theta.cos() * dphi;
+                for j in 0..azimuths {
+                    let phi = -core::f64::consts::PI + (j as f64 + 0.5) * dphi;
+                    nodes.push((local_direction(theta.sin(), theta.cos(), phi), wt));
+                }
+            }
+        }
+        SphereRule { nodes }
+    }
+
+    /// Integral over the sphere of `f(direction)` (solid angle measure).
+    pub fn integrate(&self, mut f: impl FnMut(V3<f64>) -> f64) -> f64 {
+        self.nodes.iter().map(|&(w, wt)| wt * f(w)).sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gauss_legendre_is_exact_for_degree_2n_minus_1() {
+        for n in [1, 2, 5, 8, 16] {
+            let rule = gauss_legendre(n);
+            for d in 0..(2 * n) {
+                let got: f64 = rule.iter().map(|&(x, w)| w * x.powi(d as i32)).sum();
+                let want = if d % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (d as f64 + 1.0)
+                };
+                assert!((got - want).abs() < 1e-14, "n {n} degree {d}: {got}");
+            }
+        }
+    }
+
+    #[test]
+    fn sphere_rule_weights_sum_to_four_pi_and_integrate_x_squared() {
+        let r = SphereRule::new(8, 8, 16);
+        assert!((r.integrate(|_| 1.0) - 4.0 * core::f64::consts::PI).abs() < 1e-12);
+        let x2 = r.integrate(|w| w.x * w.x);
+        assert!((x2 - 4.0 * core::f64::consts::PI / 3.0).abs() < 1e-12);
+    }
+}

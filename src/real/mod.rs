@@ -1,0 +1,235 @@
+//! The scalar abstraction every piece of shading math is written against.
+//!
+//! A function generic over [`Real`] is written once and instantiated as
+//!
+//! | type | purpose |
+//! | --- | --- |
+//! | `f64` | the reference: fits, tables, tests, error reports |
+//! | `f32` | CPU renderers and benchmarks |
+//! | [`wide::f32x8`] | eight samples per instruction for batch evaluation ([`simd`]) |
+//! | [`Traced`] | records the computation as a graph that prints as WGSL ([`traced`]) |
+//!
+//! Rules for generic code (they keep the traced graph equal to the CPU computation):
+//! no data-dependent control flow (use [`Real::select`], both arms must be safe to evaluate),
+//! fixed-count loops, constants written as `R::c(1.55)`. Control flow on the type-level
+//! constant [`Real::DOUBLE`] is allowed: it picks reference-grade approximations for `f64`.
+
+pub mod simd;
+pub mod traced;
+
+use core::fmt::Debug;
+use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Sub, SubAssign};
+
+pub use traced::{trace, Graph, Traced};
+
+/// A scalar (or a SIMD vector of scalars, or a symbolic value) shading code computes with.
+///
+/// Every method is a pure function of its arguments. Methods are named after their WGSL
+/// counterparts where one exists, so that the traced code and the CPU code agree.
+pub trait Real:
+    Copy
+    + Debug
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+{
+    /// The result of a comparison: `bool`, a SIMD lane mask, or a traced boolean.
+    type Mask: Copy
+        + BitAnd<Output = Self::Mask>
+        + BitOr<Output = Self::Mask>
+        + Not<Output = Self::Mask>;
+
+    /// `true` for `f64`: generic code may then choose reference-grade (slower, more accurate)
+    /// approximations. `false` for every single-precision instantiation, traced code included.
+    const DOUBLE: bool;
+
+    /// A constant, rounded once to the working precision.
+    fn c(value: f64) -> Self;
+    /// `sqrt`; callers guarantee a non-negative argument (see [`safe_sqrt`]).
+    fn sqrt(self) -> Self;
+    /// Natural exponential.
+    fn exp(self) -> Self;
+    /// Natural logarithm; callers guarantee a positive argument.
+    fn ln(self) -> Self;
+    /// Sine of an angle in radians; callers keep the argument within a few multiples of pi.
+    fn sin(self) -> Self;
+    /// Cosine of an angle in radians.
+    fn cos(self) -> Self;
+    /// Four-quadrant arc tangent of `self / x`; callers never pass (0, 0).
+    fn atan2(self, x: Self) -> Self;
+    /// Absolute value.
+    fn abs(self) -> Self;
+    /// Smaller of two values.
+    fn min(self, other: Self) -> Self;
+    /// Larger of two values.
+    fn max(self, other: Self) -> Self;
+    /// Largest integer not greater than the value.
+    fn floor(self) -> Self;
+    /// `self < other`.
+    fn lt(self, other: Self) -> Self::Mask;
+    /// `self <= other`.
+    fn le(self, other: Self) -> Self::Mask;
+    /// `if mask { on_true } else { on_false }`, lane by lane; both arms are always evaluated.
+    fn select(mask: Self::Mask, on_true: Self, on_false: Self) -> Self;
+
+    /// `self > other`.
+    fn gt(self, other: Self) -> Self::Mask {
+        other.lt(self)
+    }
+    /// `self >= other`.
+    fn ge(self, other: Self) -> Self::Mask {
+        other.le(self)
+    }
+    /// `self * self`.
+    fn sqr(self) -> Self {
+        self * self
+    }
+    /// The value clamped to `[lo, hi]`.
+    fn clamp(self, lo: Self, hi: Self) -> Self {
+        self.max(lo).min(hi)
+    }
+}
+
+macro_rules! impl_real_for_float {
+    ($t:ty, $double:expr) => {
+        impl Real for $t {
+            type Mask = bool;
+            const DOUBLE: bool = $double;
+            #[inline(always)]
+            fn c(value: f64) -> Self {
+                value as $t
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                <$t>::sqrt(self)
+            }
+            #[inline(always)]
+            fn exp(self) -> Self {
+                <$t>::exp(self)
+            }
+            #[inline(always)]
+            fn ln(self) -> Self {
+                <$t>::ln(self)
+            }
+            #[inline(always)]
+            fn sin(self) -> Self {
+                <$t>::sin(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                <$t>::cos(self)
+            }
+            #[inline(always)]
+            fn atan2(self, x: Self) -> Self {
+                <$t>::atan2(self, x)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+            #[inline(always)]
+            fn min(self, other: Self) -> Self {
+                <$t>::min(self, other)
+            }
+            #[inline(always)]
+            fn max(self, other: Self) -> Self {
+                <$t>::max(self, other)
+            }
+            #[inline(always)]
+            fn floor(self) -> Self {
+                <$t>::floor(self)
+            }
+            #[inline(always)]
+            fn lt(self, other: Self) -> bool {
+                self < other
+            }
+            #[inline(always)]
+            fn le(self, other: Self) -> bool {
+                self <= other
+            }
+            #[inline(always)]
+            fn select(mask: bool, on_true: Self, on_false: Self) -> Self {
+                if mask {
+                    on_true
+                } else {
+                    on_false
+                }
+            }
+        }
+    };
+}
+
+impl_real_for_float!(f64, true);
+impl_real_for_float!(f32, false);
+
+/// pi as a constant of the working precision.
+#[inline(always)]
+pub fn pi<R: Real>() -> R {
+    R::c(core::f64::consts::PI)
+}
+
+/// `sqrt(max(x, 0))`: the square root of a quantity that is non-negative in exact arithmetic
+/// but may round slightly below zero.
+#[inline(always)]
+pub fn safe_sqrt<R: Real>(x: R) -> R {
+    x.max(R::c(0.0)).sqrt()
+}
+
+/// `asin(x)` for `x` clamped to [-1, 1], written as `atan2(x, sqrt(1 - x^2))`, which GPUs
+/// evaluate more accurately than `asin` (see DESIGN.md). Exact 0 at x = 0, +-pi/2 at +-1.
+#[inline(always)]
+pub fn safe_asin<R: Real>(x: R) -> R {
+    let x = x.clamp(R::c(-1.0), R::c(1.0));
+    x.atan2(safe_sqrt(R::c(1.0) - x * x))
+}
+
+/// The angle `x` wrapped into [-pi, pi] without loops: `x - 2 pi floor((x + pi) / (2 pi))`.
+#[inline(always)]
+pub fn wrap_angle<R: Real>(x: R) -> R {
+    let two_pi = R::c(2.0 * core::f64::consts::PI);
+    x - two_pi * ((x + pi::<R>()) * R::c(0.5 * core::f64::consts::FRAC_1_PI)).floor()
+}
+
+/// Evaluates the polynomial `c[0] + c[1] x + c[2] x^2 + ...` by Horner's rule.
+#[inline(always)]
+pub fn horner<R: Real>(x: R, coefficients: &[f64]) -> R {
+    let mut rev = coefficients.iter().rev();
+    let mut acc = R::c(rev.next().copied().unwrap_or(0.0));
+    for &c in rev {
+        acc = acc * x + R::c(c);
+    }
+    acc
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_angle_lands_in_range_and_preserves_the_angle() {
+        for k in -40..=40 {
+            let x = k as f64 * 0.77;
+            let w = wrap_angle(x);
+            assert!(
+                (-core::f64::consts::PI..=core::f64::consts::PI).contains(&w),
+                "{x} -> {w}"
+            );
+            assert!((w.sin() - x.sin()).abs() < 1e-12 && (w.cos() - x.cos()).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn safe_asin_matches_asin_and_clamps() {
+        for k in -100..=100 {
+            let x = k as f64 / 100.0;
+            assert!((safe_asin(x) - x.asin()).abs() < 1e-15);
+        }
+        assert_eq!(safe_asin(1.5_f64), core::f64::consts::FRAC_PI_2);
+        assert_eq!(safe_asin(-1.5_f32), -core::f32::consts::FRAC_PI_2);
+    }
+}
