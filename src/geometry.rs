@@ -8,7 +8,7 @@
 //! to [-pi, pi] (Marschner 2003, section 2).
 
 use crate::error::ParamError;
-use crate::real::{safe_sqrt, Real};
+use crate::real::Real;
 
 /// A 3-vector of any [`Real`] (glam is used at the API boundary; generic code needs its own).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -99,10 +99,22 @@ impl<R: Real> FibreAngles<R> {
     }
 }
 
-/// sin and cos of the angle between a unit direction and the normal plane of `tangent`.
-fn sin_cos_theta<R: Real>(tangent: V3<R>, w: V3<R>) -> (R, R) {
+/// sin and cos of the angle between a unit direction and the normal plane of a unit `tangent`:
+/// `sin = w . u` and `cos = |u x w|`. Taking the cosine from the cross product rather than
+/// `sqrt(1 - sin^2)` keeps it accurate for grazing directions (|sin| -> 1), where `1 - sin^2`
+/// cancels; both are clamped to their ranges.
+pub fn sin_cos_theta<R: Real>(tangent: V3<R>, w: V3<R>) -> (R, R) {
     let s = w.dot(tangent).clamp(R::c(-1.0), R::c(1.0));
-    (s, safe_sqrt(R::c(1.0) - s * s))
+    let p = tangent.cross(w);
+    (s, p.dot(p).sqrt().min(R::c(1.0)))
+}
+
+/// [`sin_cos_theta`] in the local frame (tangent +X): `(w.x, sqrt(w.y^2 + w.z^2))`, clamped.
+pub fn local_sin_cos_theta<R: Real>(w: V3<R>) -> (R, R) {
+    (
+        w.x.clamp(R::c(-1.0), R::c(1.0)),
+        (w.y * w.y + w.z * w.z).sqrt().min(R::c(1.0)),
+    )
 }
 
 /// The signed angle from `a` to `b` about the axis `tangent`: atan2(u . (a x b), a . b),
@@ -136,8 +148,8 @@ pub fn local_fibre_angles<R: Real>(wi: V3<R>, wo: V3<R>) -> FibreAngles<R> {
     let pi_ = V3::new(R::c(0.0), wi.y, wi.z);
     let po = V3::new(R::c(0.0), wo.y, wo.z);
     // phi_o - phi_i is the signed angle from wi's projection to wo's.
-    let (sin_theta_i, cos_theta_i) = sin_cos_theta(x, wi);
-    let (sin_theta_o, cos_theta_o) = sin_cos_theta(x, wo);
+    let (sin_theta_i, cos_theta_i) = local_sin_cos_theta(wi);
+    let (sin_theta_o, cos_theta_o) = local_sin_cos_theta(wo);
     FibreAngles {
         sin_theta_i,
         cos_theta_i,

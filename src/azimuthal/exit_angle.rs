@@ -7,12 +7,11 @@ pub fn exit_angle<R: Real>(p: R, gamma_i: R, gamma_t: R) -> R {
     R::c(2.0) * p * gamma_t - R::c(2.0) * gamma_i + p * pi::<R>()
 }
 
-/// sin(gamma_t) for offset h and a ray inclined at theta: Snell's law in the normal plane with
-/// Bravais' index eta' = sqrt(eta^2 - sin^2 theta) / cos theta, written as
-/// `h cos theta / sqrt(eta^2 - sin^2 theta)` so that grazing rays (cos theta = 0) give 0, not
-/// 0/0. Requires eta > 1.
-pub fn refracted_offset<R: Real>(h: R, eta: R, sin_theta: R) -> R {
-    let cos_theta = safe_sqrt(R::c(1.0) - sin_theta * sin_theta);
+/// sin(gamma_t) for offset h and a ray inclined at theta (given by its sine and cosine): Snell's
+/// law in the normal plane with Bravais' index eta' = sqrt(eta^2 - sin^2 theta) / cos theta,
+/// written as `h cos theta / sqrt(eta^2 - sin^2 theta)` so that grazing rays (cos theta = 0)
+/// give 0, not 0/0. Requires eta > 1.
+pub fn refracted_offset<R: Real>(h: R, eta: R, sin_theta: R, cos_theta: R) -> R {
     h * cos_theta / safe_sqrt(eta * eta - sin_theta * sin_theta)
 }
 
@@ -20,7 +19,8 @@ pub fn refracted_offset<R: Real>(h: R, eta: R, sin_theta: R) -> R {
 /// gamma_i = asin h, gamma_t = asin(h / eta').
 pub fn exit_angle_of_offset<R: Real>(p: R, h: R, eta: R, sin_theta: R) -> R {
     let gamma_i = safe_asin(h);
-    let gamma_t = safe_asin(refracted_offset(h, eta, sin_theta));
+    let cos_theta = safe_sqrt(R::c(1.0) - sin_theta * sin_theta);
+    let gamma_t = safe_asin(refracted_offset(h, eta, sin_theta, cos_theta));
     exit_angle(p, gamma_i, gamma_t)
 }
 

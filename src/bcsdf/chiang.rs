@@ -28,7 +28,7 @@ use crate::azimuthal::{
 };
 use crate::error::ParamError;
 use crate::fresnel::fresnel_dielectric;
-use crate::geometry::{azimuth_between, local_direction, V3};
+use crate::geometry::{azimuth_between, local_direction, local_sin_cos_theta, V3};
 use crate::lobe::{deon_lobe, deon_lobe_sample_cos_theta};
 use crate::real::{pi, safe_asin, safe_sqrt, wrap_angle, Real};
 
@@ -246,7 +246,7 @@ impl<R: Real> ChiangHair<R> {
         let one = R::c(1.0);
         let sin_t = sin_o / self.eta;
         let cos_t = safe_sqrt(one - sin_t * sin_t);
-        let sin_gamma_t = refracted_offset(h, self.eta, sin_o);
+        let sin_gamma_t = refracted_offset(h, self.eta, sin_o, cos_o);
         let cos_gamma_t = safe_sqrt(one - sin_gamma_t * sin_gamma_t);
         let transmittance = self
             .sigma_a
@@ -258,10 +258,8 @@ impl<R: Real> ChiangHair<R> {
     fn lobes(&self, wi: V3<R>, wo: V3<R>, h: R) -> Lobes<R> {
         let one = R::c(1.0);
         let h = h.clamp(-one, one);
-        let sin_o = wo.x.clamp(-one, one);
-        let cos_o = safe_sqrt(one - sin_o * sin_o);
-        let sin_i = wi.x.clamp(-one, one);
-        let cos_i = safe_sqrt(one - sin_i * sin_i);
+        let (sin_o, cos_o) = local_sin_cos_theta(wo);
+        let (sin_i, cos_i) = local_sin_cos_theta(wi);
         let phi = azimuth_between(V3::c(1.0, 0.0, 0.0), normal_plane(wo), normal_plane(wi));
         let (gamma_o, gamma_t, transmittance, fresnel) = self.path(sin_o, cos_o, h);
         let per_channel = transmittance.map(|t| attenuations_from_fresnel(fresnel, t));
@@ -327,8 +325,7 @@ impl<R: Real> ChiangHair<R> {
     pub fn sample(&self, wo: V3<R>, h: R, u: [R; 2], uc: R) -> HairSample<R> {
         let one = R::c(1.0);
         let h = h.clamp(-one, one);
-        let sin_o = wo.x.clamp(-one, one);
-        let cos_o = safe_sqrt(one - sin_o * sin_o);
+        let (sin_o, cos_o) = local_sin_cos_theta(wo);
         let (gamma_o, gamma_t, transmittance, fresnel) = self.path(sin_o, cos_o, h);
         let per_channel = transmittance.map(|t| attenuations_from_fresnel(fresnel, t));
         let a = core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
