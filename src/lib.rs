@@ -1,10 +1,5 @@
-//! # hairmath
-//!
-//! The mathematics of hair shading, written once over the scalar trait [`real::Real`] and
-//! instantiated in `f64` (the reference), `f32`, eight-lane SIMD and traced shader code.
-//!
-//! Start with [`bcsdf::ChiangHair`], the reference single-fibre model of Chiang et al. 2016 as
-//! pbrt-v4 defines it. Conventions are documented in [`geometry`].
+#![doc = include_str!("../README.md")]
+#![warn(missing_docs)]
 
 pub mod absorption;
 pub mod azimuthal;

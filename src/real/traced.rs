@@ -19,25 +19,40 @@ use std::fmt::Write as _;
 /// A unary floating-point operation of the graph.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Unary {
+    /// `-a`.
     Neg,
+    /// `sqrt(a)`.
     Sqrt,
+    /// `exp(a)`.
     Exp,
+    /// natural logarithm, WGSL `log(a)`.
     Ln,
+    /// `sin(a)`.
     Sin,
+    /// `cos(a)`.
     Cos,
+    /// `abs(a)`.
     Abs,
+    /// `floor(a)`.
     Floor,
 }
 
 /// A binary floating-point operation of the graph.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Binary {
+    /// `a + b`.
     Add,
+    /// `a - b`.
     Sub,
+    /// `a * b`.
     Mul,
+    /// `a / b`.
     Div,
+    /// `atan2(a, b)`.
     Atan2,
+    /// `min(a, b)`.
     Min,
+    /// `max(a, b)`.
     Max,
 }
 
@@ -48,14 +63,19 @@ pub enum Node {
     Input(u32),
     /// An `f32` constant, stored as its bits.
     Const(u32),
+    /// A unary operation of an earlier node.
     Unary(Unary, u32),
+    /// A binary operation of two earlier nodes.
     Binary(Binary, u32, u32),
     /// `a < b` (boolean).
     Less(u32, u32),
     /// `a <= b` (boolean).
     LessEqual(u32, u32),
+    /// Boolean `a & b`.
     And(u32, u32),
+    /// Boolean `a | b`.
     Or(u32, u32),
+    /// Boolean `!a`.
     Not(u32),
     /// `if c { t } else { f }` with c boolean: (c, t, f).
     Select(u32, u32, u32),
