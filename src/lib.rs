@@ -10,5 +10,6 @@ pub mod geometry;
 pub mod lobe;
 pub mod quadrature;
 pub mod real;
+pub mod sh;
 
 pub use error::ParamError;
