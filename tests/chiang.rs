@@ -362,3 +362,76 @@ fn invalid_parameters_are_typed_errors_that_say_what_is_allowed() {
         assert!(e.contains(needle) && e.contains("must"), "{e}");
     }
 }
+
+/// The hard cases of DESIGN.md, each evaluated, sampled and given a pdf in f64 and f32:
+/// grazing directions, wi = wo, wi = -wo, phi = 0 and +-pi, h = +-1, beta = 0.01 (variance
+/// 5.4e-5) and 1, sigma_a = 0 and 20, eta close to 1, tilt 0 and 60 degrees.
+#[test]
+fn hard_cases_are_finite_and_non_negative() {
+    let dirs = [
+        V3::new(1.0, 0.0, 0.0),
+        V3::new(-1.0, 0.0, 0.0),
+        dir(89.999, 0.0),
+        dir(0.0, 0.0),
+        dir(0.0, std::f64::consts::PI),
+        dir(0.0, -std::f64::consts::PI),
+        dir(30.0, 1.0),
+        dir(-30.0, 1.0 - std::f64::consts::PI),
+    ];
+    let mut params = vec![];
+    for &beta in &[0.01, 1.0] {
+        for &sa in &[0.0, 20.0] {
+            for &(alpha, eta) in &[(0.0, 1.0001), (60.0_f64.to_radians(), 1.55)] {
+                params
+                    .push(ChiangParams::new(beta, beta, alpha, eta, [sa, 0.5 * sa, 0.0]).unwrap());
+            }
+        }
+    }
+    let ok = |v: &[f64]| v.iter().all(|x| x.is_finite() && *x >= 0.0);
+    for p in &params {
+        let (m64, m32) = (ChiangHair::<f64>::new(p), ChiangHair::<f32>::new(p));
+        let c = |v: V3<f64>| V3::new(v.x as f32, v.y as f32, v.z as f32);
+        for &wi in &dirs {
+            for &wo in &dirs {
+                for &h in &[-1.0, 0.0, 1.0] {
+                    let f = m64.eval(wi, wo, h);
+                    assert!(
+                        ok(&f) && ok(&[m64.pdf(wi, wo, h)]),
+                        "{p:?} {wi:?} {wo:?} {h}: {f:?}"
+                    );
+                    let g = m32.eval(c(wi), c(wo), h as f32).map(f64::from);
+                    assert!(
+                        ok(&g) && ok(&[m32.pdf(c(wi), c(wo), h as f32) as f64]),
+                        "f32 {p:?} {wi:?} {wo:?} {h}"
+                    );
+                }
+                let s = m64.sample(wo, 1.0, [0.0, 1.0], 1.0);
+                assert!(ok(&s.value) && ok(&[s.pdf]), "{s:?}");
+                let s = m32.sample(c(wo), -1.0, [1.0, 0.0], 0.0);
+                assert!(ok(&s.value.map(f64::from)) && ok(&[s.pdf as f64]), "{s:?}");
+            }
+        }
+    }
+}
+
+/// Energy conservation also holds at the parameter extremes that quadrature can resolve:
+/// eta close to 1, a 40 degree tilt, grazing wo.
+#[test]
+fn white_furnace_at_extreme_parameters() {
+    let rule = SphereRule::new(128, 8, 512);
+    for (alpha, eta) in [
+        (0.0, 1.0001),
+        (40.0_f64.to_radians(), 1.55),
+        (-40.0_f64.to_radians(), 2.5),
+    ] {
+        let model =
+            ChiangHair::<f64>::new(&ChiangParams::new(0.2, 0.2, alpha, eta, [0.0; 3]).unwrap());
+        for (wo, h) in [(dir(89.0, 0.5), -0.5), (dir(0.0, 0.0), 1.0)] {
+            let albedo = rule.integrate(|wi| model.eval(wi, wo, h)[0]);
+            assert!(
+                (albedo - 1.0).abs() < 1e-3,
+                "alpha {alpha} eta {eta} wo {wo:?}: {albedo}"
+            );
+        }
+    }
+}
