@@ -54,8 +54,12 @@ impl<R: Real> V3<R> {
             z: self.z * s,
         }
     }
-    /// `self - o`.
-    pub fn sub(self, o: Self) -> Self {
+}
+
+impl<R: Real> core::ops::Sub for V3<R> {
+    type Output = V3<R>;
+    /// Component-wise difference.
+    fn sub(self, o: Self) -> Self {
         V3 {
             x: self.x - o.x,
             y: self.y - o.y,
@@ -131,8 +135,8 @@ pub fn fibre_angles<R: Real>(tangent: V3<R>, wi: V3<R>, wo: V3<R>) -> FibreAngle
     let (sin_theta_i, cos_theta_i) = sin_cos_theta(tangent, wi);
     let (sin_theta_o, cos_theta_o) = sin_cos_theta(tangent, wo);
     // The projections onto the normal plane need not be normalised: atan2 is scale-free.
-    let pi_ = wi.sub(tangent.scale(sin_theta_i));
-    let po = wo.sub(tangent.scale(sin_theta_o));
+    let pi_ = wi - tangent.scale(sin_theta_i);
+    let po = wo - tangent.scale(sin_theta_o);
     FibreAngles {
         sin_theta_i,
         cos_theta_i,

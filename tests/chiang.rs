@@ -67,7 +67,10 @@ fn lossless_sample_weights_are_one() {
         let m64 = ChiangHair::<f64>::new(&p);
         let m32 = ChiangHair::<f32>::new(&p);
         for _ in 0..20_000 {
-            let wo = dir(rng.random_range(-89.9..89.9), rng.random_range(-3.14..3.14));
+            let wo = dir(
+                rng.random_range(-89.9..89.9),
+                rng.random_range(-std::f64::consts::PI..std::f64::consts::PI),
+            );
             let h = rng.random_range(-1.0..1.0);
             let (u, uc) = (
                 [rng.random::<f64>(), rng.random::<f64>()],

@@ -21,8 +21,9 @@ pub fn trimmed_logistic<R: Real>(x: R, s: R) -> R {
     logistic(x, s) / trimmed_mass(s)
 }
 
-/// `CDF(pi) - CDF(-pi) = (1 - e) / (1 + e)` with `e = e^(-pi/s)`.
-fn trimmed_mass<R: Real>(s: R) -> R {
+/// The logistic's mass on [-pi, pi]: `CDF(pi) - CDF(-pi) = (1 - e) / (1 + e)` with
+/// `e = e^(-pi/s)`. [`trimmed_logistic`] divides by it.
+pub fn trimmed_mass<R: Real>(s: R) -> R {
     let e = (-pi::<R>() / s).exp();
     (R::c(1.0) - e) / (R::c(1.0) + e)
 }

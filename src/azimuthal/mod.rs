@@ -9,6 +9,6 @@ mod exit_angle;
 pub use attenuation::{attenuations, attenuations_from_fresnel, LOBES};
 pub use distribution::{
     logistic, logistic_cdf, sample_trimmed_logistic, sample_wrapped_gaussian, trimmed_logistic,
-    wrapped_gaussian, WRAPPED_GAUSSIAN_TERMS,
+    trimmed_mass, wrapped_gaussian, WRAPPED_GAUSSIAN_TERMS,
 };
 pub use exit_angle::{exit_angle, exit_angle_of_offset, refracted_offset};

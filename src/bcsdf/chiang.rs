@@ -23,13 +23,13 @@
 
 use crate::absorption::{segment_transmittance, PathLength, Rgb};
 use crate::azimuthal::{
-    attenuations_from_fresnel, exit_angle, refracted_offset, sample_trimmed_logistic,
-    trimmed_logistic, LOBES,
+    attenuations_from_fresnel, exit_angle, logistic, refracted_offset, sample_trimmed_logistic,
+    trimmed_mass, LOBES,
 };
 use crate::error::ParamError;
 use crate::fresnel::fresnel_dielectric;
 use crate::geometry::{azimuth_between, local_direction, local_sin_cos_theta, V3};
-use crate::lobe::{deon_lobe, deon_lobe_sample_cos_theta};
+use crate::lobe::{deon_lobe_sample_cos_theta, DeonLobe};
 use crate::real::{pi, safe_asin, safe_sqrt, wrap_angle, Real};
 
 /// Validated parameters of the Chiang 2016 model.
@@ -127,7 +127,7 @@ pub fn logistic_scale(beta_n: f64) -> f64 {
 }
 
 /// Number of per-material constants of [`ChiangHair`] ([`ChiangHair::constants`]).
-pub const CHIANG_CONSTANTS: usize = 12;
+pub const CHIANG_CONSTANTS: usize = 21;
 
 /// The Chiang 2016 model ready to evaluate in the working precision `R`: the per-material
 /// constants are derived once in `f64` and rounded to `R`.
@@ -135,8 +135,12 @@ pub const CHIANG_CONSTANTS: usize = 12;
 pub struct ChiangHair<R> {
     /// Longitudinal variances v_p for p = 0..3.
     v: [R; LOBES],
+    /// d'Eon's lobe of each variance, normalisation precomputed.
+    lobe: [DeonLobe<R>; LOBES],
     /// Logistic scale s.
     s: R,
+    /// 1 / (the logistic's mass on [-pi, pi]).
+    inv_mass: R,
     /// sin and cos of alpha, 2 alpha and 4 alpha.
     sin_2k_alpha: [R; 3],
     cos_2k_alpha: [R; 3],
@@ -167,6 +171,9 @@ impl<R: Real> ChiangHair<R> {
     /// Derives the model constants (pbrt-v4 `HairBxDF` constructor).
     pub fn new(params: &ChiangParams) -> Self {
         let v0 = longitudinal_variance(params.beta_m);
+        let v = [v0, 0.25 * v0, 4.0 * v0, 4.0 * v0];
+        let lobe = v.map(DeonLobe::new);
+        let s = logistic_scale(params.beta_n);
         let mut sin = [params.alpha.sin(), 0.0, 0.0];
         let mut cos = [(1.0 - sin[0] * sin[0]).max(0.0).sqrt(), 0.0, 0.0];
         for k in 1..3 {
@@ -174,11 +181,20 @@ impl<R: Real> ChiangHair<R> {
             cos[k] = cos[k - 1] * cos[k - 1] - sin[k - 1] * sin[k - 1];
         }
         let constants: [f64; CHIANG_CONSTANTS] = [
-            v0,
-            0.25 * v0,
-            4.0 * v0,
-            4.0 * v0,
-            logistic_scale(params.beta_n),
+            v[0],
+            v[1],
+            v[2],
+            v[3],
+            lobe[0].inv_v,
+            lobe[1].inv_v,
+            lobe[2].inv_v,
+            lobe[3].inv_v,
+            lobe[0].norm,
+            lobe[1].norm,
+            lobe[2].norm,
+            lobe[3].norm,
+            s,
+            1.0 / trimmed_mass(s),
             sin[0],
             sin[1],
             sin[2],
@@ -195,10 +211,15 @@ impl<R: Real> ChiangHair<R> {
     pub fn from_constants(c: [R; CHIANG_CONSTANTS], sigma_a: [R; 3]) -> Self {
         ChiangHair {
             v: [c[0], c[1], c[2], c[3]],
-            s: c[4],
-            sin_2k_alpha: [c[5], c[6], c[7]],
-            cos_2k_alpha: [c[8], c[9], c[10]],
-            eta: c[11],
+            lobe: core::array::from_fn(|p| DeonLobe {
+                inv_v: c[4 + p],
+                norm: c[8 + p],
+            }),
+            s: c[12],
+            inv_mass: c[13],
+            sin_2k_alpha: [c[14], c[15], c[16]],
+            cos_2k_alpha: [c[17], c[18], c[19]],
+            eta: c[20],
             sigma_a,
         }
     }
@@ -208,15 +229,25 @@ impl<R: Real> ChiangHair<R> {
         self.sigma_a
     }
 
-    /// `[v_0, v_1, v_2, v_3, s, sin alpha, sin 2alpha, sin 4alpha, cos alpha, cos 2alpha,
-    /// cos 4alpha, eta]`: the material constants (sigma_a travels separately).
+    /// `[v_0..v_3, 1/v_0..1/v_3, the four d'Eon normalisations, s, 1/(logistic mass),
+    /// sin alpha, sin 2alpha, sin 4alpha, cos alpha, cos 2alpha, cos 4alpha, eta]`: the
+    /// material constants (sigma_a travels separately).
     pub fn constants(&self) -> [R; CHIANG_CONSTANTS] {
         [
             self.v[0],
             self.v[1],
             self.v[2],
             self.v[3],
+            self.lobe[0].inv_v,
+            self.lobe[1].inv_v,
+            self.lobe[2].inv_v,
+            self.lobe[3].inv_v,
+            self.lobe[0].norm,
+            self.lobe[1].norm,
+            self.lobe[2].norm,
+            self.lobe[3].norm,
             self.s,
+            self.inv_mass,
             self.sin_2k_alpha[0],
             self.sin_2k_alpha[1],
             self.sin_2k_alpha[2],
@@ -267,10 +298,10 @@ impl<R: Real> ChiangHair<R> {
         let mut mn = [R::c(0.0); LOBES];
         for (p, slot) in mn.iter_mut().enumerate() {
             let (sin_op, cos_op) = self.tilted(p, sin_o, cos_o);
-            let m = deon_lobe(self.v[p], sin_i, cos_i, sin_op, cos_op);
+            let m = self.lobe[p].eval(sin_i, cos_i, sin_op, cos_op);
             let n = if p < 3 {
                 let dphi = wrap_angle(phi - exit_angle(R::c(p as f64), gamma_o, gamma_t));
-                trimmed_logistic(dphi, self.s)
+                logistic(dphi, self.s) * self.inv_mass
             } else {
                 R::c(0.5 * core::f64::consts::FRAC_1_PI)
             };
@@ -313,8 +344,8 @@ impl<R: Real> ChiangHair<R> {
         let lobes = self.lobes(wi, wo, h);
         let w = Self::lobe_weights(&lobes.a);
         let mut pdf = R::c(0.0);
-        for p in 0..LOBES {
-            pdf += lobes.mn[p] * w[p];
+        for (mn, weight) in lobes.mn.iter().zip(w) {
+            pdf += *mn * weight;
         }
         pdf
     }
@@ -335,20 +366,20 @@ impl<R: Real> ChiangHair<R> {
         let uc = uc.clamp(R::c(0.0), one);
         let mut lower = R::c(0.0);
         let mut chosen = [R::c(0.0); 6]; // p, lower, width, sin_op, cos_op, v_p
-        for p in 0..LOBES {
+        for (p, &weight) in w.iter().enumerate() {
             // The intervals [lower, upper) partition [0, 1]; the last one takes the rest.
             let upper = if p == LOBES - 1 {
                 R::c(2.0)
             } else {
-                lower + w[p]
+                lower + weight
             };
             let here = !uc.lt(lower) & uc.lt(upper);
             let (sin_op, cos_op) = self.tilted(p, sin_o, cos_o);
-            let candidate = [R::c(p as f64), lower, w[p], sin_op, cos_op, self.v[p]];
+            let candidate = [R::c(p as f64), lower, weight, sin_op, cos_op, self.v[p]];
             for (slot, value) in chosen.iter_mut().zip(candidate) {
                 *slot = R::select(here, value, *slot);
             }
-            lower += w[p];
+            lower += weight;
         }
         let [p, lower, width, sin_op, cos_op, v] = chosen;
         let uc = ((uc - lower) / width.max(R::c(1e-30))).clamp(R::c(0.0), R::c(1.0 - 1e-7));

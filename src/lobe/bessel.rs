@@ -1,7 +1,7 @@
-//! The modified Bessel function I0, in the scaled logarithmic form the lobes need:
-//! `log_i0e(x) = ln(I0(x) e^-x)`, which is finite and smooth for all x >= 0 (it behaves like
-//! `-ln(2 pi x) / 2` for large x), so lobes of variance 1e-4 (arguments up to 1e4) never
-//! overflow.
+//! The modified Bessel function I0, in the scaled forms the lobes need: `I0(x) e^-x` split
+//! into a bounded factor and an exponent ([`i0e_split`]), and `log_i0e(x) = ln(I0(x) e^-x)`.
+//! Both are finite and smooth for all x >= 0 (`I0(x) e^-x` behaves like `1 / sqrt(2 pi x)` for
+//! large x), so lobes of variance 1e-4 (arguments up to 1e4) never overflow.
 //!
 //! Two approximations, chosen by precision ([`Real::DOUBLE`]):
 //! - `f64`: the power series `I0(x) = sum_k (x^2/4)^k / (k!)^2` (42 terms) for x < 20 and
@@ -41,14 +41,50 @@ const ASYMPTOTIC: [f64; ASYMPTOTIC_TERMS] = {
     c
 };
 
+/// `I0(x) e^-x` split as `(scale, shift)` with `I0(x) e^-x = scale * e^shift`, `shift <= 0`,
+/// for `x >= 0` (negative arguments are treated as 0). Callers fold `shift` into an exponential
+/// they compute anyway, so the lobes need no logarithm: below the switch point the series gives
+/// `scale = I0(x)`, `shift = -x`; above it the asymptotic form gives `scale = sqrt(x) e^-x I0(x)
+/// / sqrt(x)`, `shift = 0`. Neither part overflows for any finite x.
+pub fn i0e_split<R: Real>(x: R) -> (R, R) {
+    let x = x.max(R::c(0.0));
+    let (switch, near, far) = if R::DOUBLE {
+        series_double(x)
+    } else {
+        polynomials_single(x)
+    };
+    let is_near = x.lt(R::c(switch));
+    (
+        R::select(is_near, near, far),
+        R::select(is_near, -x, R::c(0.0)),
+    )
+}
+
+/// (switch point, I0 by its power series, sqrt(2 pi x) e^-x I0 / sqrt(2 pi x) by the asymptotic
+/// series), each evaluated on its side of the switch point.
+fn series_double<R: Real>(x: R) -> (f64, R, R) {
+    let small = x.min(R::c(SERIES_END));
+    let large = x.max(R::c(SERIES_END));
+    let near = horner(small * small * R::c(0.25), &SERIES);
+    let far = horner(R::c(0.125) / large, &ASYMPTOTIC)
+        / (R::c(2.0 * core::f64::consts::PI) * large).sqrt();
+    (SERIES_END, near, far)
+}
+
+/// The same parts from the polynomial fits of Abramowitz and Stegun 9.8.1 and 9.8.2.
+fn polynomials_single<R: Real>(x: R) -> (f64, R, R) {
+    let small = x.min(R::c(3.75));
+    let large = x.max(R::c(3.75));
+    let t = small * R::c(1.0 / 3.75);
+    let near = horner(t * t, &AS_9_8_1);
+    let far = horner(R::c(3.75) / large, &AS_9_8_2) / large.sqrt();
+    (3.75, near, far)
+}
+
 /// `ln(I0(x) e^-x)` for `x >= 0` (negative arguments are treated as 0).
 pub fn log_i0e<R: Real>(x: R) -> R {
-    let x = x.max(R::c(0.0));
-    if R::DOUBLE {
-        log_i0e_double(x)
-    } else {
-        log_i0e_single(x)
-    }
+    let (scale, shift) = i0e_split(x);
+    scale.ln() + shift
 }
 
 /// `ln I0(x)` for `x >= 0`.
@@ -59,19 +95,6 @@ pub fn log_i0<R: Real>(x: R) -> R {
 /// `I0(x)` for `|x|` up to about 700 in f64 (it overflows beyond).
 pub fn i0<R: Real>(x: R) -> R {
     log_i0(x.abs()).exp()
-}
-
-fn log_i0e_double<R: Real>(x: R) -> R {
-    // Power series in y = x^2/4 with coefficients 1/(k!)^2, evaluated by Horner's rule.
-    let small = x.min(R::c(SERIES_END));
-    let y = small * small * R::c(0.25);
-    let series = horner(y, &SERIES).ln() - small;
-    // Asymptotic series in t = 1/(8x): term_k = term_{k-1} (2k-1)^2 t / k.
-    let large = x.max(R::c(SERIES_END));
-    let t = R::c(0.125) / large;
-    let asymptotic =
-        horner(t, &ASYMPTOTIC).ln() - R::c(0.5) * (R::c(2.0 * core::f64::consts::PI) * large).ln();
-    R::select(x.lt(R::c(SERIES_END)), series, asymptotic)
 }
 
 /// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75.
@@ -90,15 +113,6 @@ const AS_9_8_2: [f64; 9] = [
     -0.01647633,
     0.00392377,
 ];
-
-fn log_i0e_single<R: Real>(x: R) -> R {
-    let small = x.min(R::c(3.75));
-    let t = small * R::c(1.0 / 3.75);
-    let near = horner(t * t, &AS_9_8_1).ln() - small;
-    let large = x.max(R::c(3.75));
-    let far = horner(R::c(3.75) / large, &AS_9_8_2).ln() - R::c(0.5) * large.ln();
-    R::select(x.lt(R::c(3.75)), near, far)
-}
 
 #[cfg(test)]
 mod tests {
@@ -155,7 +169,8 @@ mod tests {
             let want = i0e_by_quadrature(x);
             // The polynomials themselves, in f64: A&S's bounds are absolute, 1.6e-7 on I0 >= 1
             // and 1.9e-7 on sqrt(x) e^-x I0 >= 0.3989, so at most 4.8e-7 relative.
-            let poly = log_i0e_single(x).exp();
+            let (_, near, far) = polynomials_single(x);
+            let poly = if x < 3.75 { near * (-x).exp() } else { far };
             assert!(
                 ((poly - want) / want).abs() < 4.8e-7,
                 "x = {x}: {poly} vs {want}"

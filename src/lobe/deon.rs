@@ -1,4 +1,4 @@
-use super::bessel::log_i0e;
+use super::bessel::i0e_split;
 use crate::real::Real;
 
 /// d'Eon et al. 2011's energy-conserving longitudinal lobe (their eq. 7; pbrt-v4 `Mp`):
@@ -7,25 +7,52 @@ use crate::real::Real;
 ///
 /// normalised so that `int_{-pi/2}^{pi/2} M cos(theta_i) d theta_i = 1` for every theta_o and
 /// every variance `v > 0`. It peaks at theta_i = -theta_o (directions point away from the
-/// fibre, so that is the mirror direction).
-///
-/// Evaluated in log space so it is finite for v from 1e-4 to 100 and beyond. With
-/// `a = cos_i cos_o / v` and `csch(1/v) / (2v) = e^(-1/v) / (v (1 - e^(-2/v)))`, the exponent is
-/// `(cos(theta_i + theta_o) - 1) / v + ln(I0(a) e^-a)`, which is never positive. The
-/// cancellation in `1 - cos(theta_i + theta_o)` near the peak is avoided by writing it as
-/// `sin^2 / (1 + cos)` there.
+/// fibre, so that is the mirror direction). See [`DeonLobe`] for the evaluation.
 pub fn deon_lobe<R: Real>(v: R, sin_i: R, cos_i: R, sin_o: R, cos_o: R) -> R {
-    let one = R::c(1.0);
-    let cos_sum = cos_i * cos_o - sin_i * sin_o;
-    let sin_sum = sin_i * cos_o + cos_i * sin_o;
-    let one_minus_cos = R::select(
-        R::c(0.0).lt(cos_sum),
-        sin_sum * sin_sum / (one + cos_sum.max(R::c(0.0))),
-        one - cos_sum,
-    );
-    let a = cos_i * cos_o / v;
-    let exponent = log_i0e(a) - one_minus_cos / v;
-    exponent.exp() / (v * one_minus_exp_neg(R::c(2.0) / v))
+    DeonLobe::new(v).eval(sin_i, cos_i, sin_o, cos_o)
+}
+
+/// d'Eon's lobe of one variance with its normalisation precomputed.
+///
+/// Evaluated without overflow for v from 1e-4 to 100 and beyond: with `a = cos_i cos_o / v`,
+/// `csch(1/v) / (2v) = e^(-1/v) / (v (1 - e^(-2/v)))` and `I0(a) e^-a = scale e^shift`
+/// ([`i0e_split`]),
+///
+/// `M = scale exp(shift - (1 - cos(theta_i + theta_o)) / v) / (v (1 - e^(-2/v)))`,
+///
+/// whose exponent is never positive. The cancellation in `1 - cos(theta_i + theta_o)` near the
+/// peak is avoided by writing it as `sin^2 / (1 + cos)` there. One exponential, one square root
+/// and one division per evaluation in single precision.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DeonLobe<R> {
+    /// 1 / v.
+    pub inv_v: R,
+    /// 1 / (v (1 - e^(-2/v))).
+    pub norm: R,
+}
+
+impl<R: Real> DeonLobe<R> {
+    /// The lobe of variance `v > 0`.
+    pub fn new(v: R) -> Self {
+        DeonLobe {
+            inv_v: R::c(1.0) / v,
+            norm: R::c(1.0) / (v * one_minus_exp_neg(R::c(2.0) / v)),
+        }
+    }
+
+    /// `M(theta_i; theta_o)` from the sines and (non-negative) cosines of both angles.
+    pub fn eval(&self, sin_i: R, cos_i: R, sin_o: R, cos_o: R) -> R {
+        let one = R::c(1.0);
+        let cos_sum = cos_i * cos_o - sin_i * sin_o;
+        let sin_sum = sin_i * cos_o + cos_i * sin_o;
+        let one_minus_cos = R::select(
+            R::c(0.0).lt(cos_sum),
+            sin_sum * sin_sum / (one + cos_sum.max(R::c(0.0))),
+            one - cos_sum,
+        );
+        let (scale, shift) = i0e_split(cos_i * cos_o * self.inv_v);
+        self.norm * scale * (shift - one_minus_cos * self.inv_v).exp()
+    }
 }
 
 /// `1 - e^(-t)` for `t >= 0`, accurate also for small t (Taylor series below 0.1, 8 terms,

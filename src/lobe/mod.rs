@@ -6,6 +6,6 @@ mod deon;
 mod gaussian;
 mod henyey_greenstein;
 
-pub use deon::{deon_lobe, deon_lobe_sample_cos_theta};
+pub use deon::{deon_lobe, deon_lobe_sample_cos_theta, DeonLobe};
 pub use gaussian::gaussian_lobe;
 pub use henyey_greenstein::{hg_gerard_printed, HenyeyGreenstein};

@@ -132,13 +132,25 @@ macro_rules! impl_real_for_float {
             fn abs(self) -> Self {
                 <$t>::abs(self)
             }
+            // Defined by one comparison so the result, the sign of a zero included, depends only
+            // on the operands' order: `f32::max(-0.0, 0.0)` may give either zero depending on
+            // constant folding, which would break bit-identity with the traced graph. A NaN
+            // `self` yields `other`.
             #[inline(always)]
             fn min(self, other: Self) -> Self {
-                <$t>::min(self, other)
+                if self.is_nan() || other < self {
+                    other
+                } else {
+                    self
+                }
             }
             #[inline(always)]
             fn max(self, other: Self) -> Self {
-                <$t>::max(self, other)
+                if self.is_nan() || self < other {
+                    other
+                } else {
+                    self
+                }
             }
             #[inline(always)]
             fn floor(self) -> Self {

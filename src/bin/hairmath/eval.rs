@@ -1,0 +1,310 @@
+//! `hairmath eval`: evaluate a model on rows of a simple CSV read from stdin.
+
+use crate::CliError;
+use clap::{ArgGroup, Args, ValueEnum};
+use hairmath::absorption::{sigma_a_from_color, sigma_a_from_melanin, Rgb};
+use hairmath::bcsdf::{ChiangHair, ChiangParams};
+use hairmath::geometry::V3;
+use std::io::{self, BufRead, BufWriter, Write};
+
+/// Largest accepted deviation of a direction's length from 1.
+const UNIT_TOLERANCE: f64 = 1e-3;
+
+/// The columns every input must have, in the order the evaluation uses them.
+const REQUIRED: [&str; 7] = ["wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z", "h"];
+
+/// The scattering models `eval` knows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Model {
+    /// Chiang et al. 2016 (pbrt-v4 `HairBxDF`), the near-field reference.
+    Chiang,
+}
+
+/// Arguments of `hairmath eval`.
+#[derive(Args, Debug)]
+#[command(group(
+    ArgGroup::new("absorption")
+        .required(true)
+        .args(["sigma_a", "melanin", "color"])
+))]
+pub struct EvalArgs {
+    /// The scattering model.
+    #[arg(long, value_enum, default_value_t = Model::Chiang)]
+    model: Model,
+    /// Longitudinal roughness beta_m, in (0, 1].
+    #[arg(long, value_name = "B", allow_hyphen_values = true)]
+    beta_m: f64,
+    /// Azimuthal roughness beta_n, in (0, 1].
+    #[arg(long, value_name = "B", allow_hyphen_values = true)]
+    beta_n: f64,
+    /// Cuticle tilt alpha in degrees.
+    #[arg(
+        long,
+        value_name = "A",
+        default_value_t = 2.0,
+        allow_hyphen_values = true
+    )]
+    alpha_deg: f64,
+    /// Relative index of refraction eta, > 1.
+    #[arg(
+        long,
+        value_name = "E",
+        default_value_t = 1.55,
+        allow_hyphen_values = true
+    )]
+    eta: f64,
+    /// Absorption per unit fibre radius, linear RGB.
+    #[arg(long, value_name = "R,G,B", value_parser = parse_floats::<3>, allow_hyphen_values = true)]
+    sigma_a: Option<[f64; 3]>,
+    /// Eumelanin and pheomelanin concentrations (sigma_a = eu * [0.419, 0.697, 1.37] +
+    /// pheo * [0.187, 0.4, 1.05]).
+    #[arg(long, value_name = "EU,PHEO", value_parser = parse_floats::<2>, allow_hyphen_values = true)]
+    melanin: Option<[f64; 2]>,
+    /// Approximate colour of a multiply-scattering hair volume, linear RGB in (0, 1]
+    /// (inverted to sigma_a with beta_n, Chiang et al. 2016 section 4.2).
+    #[arg(long, value_name = "R,G,B", value_parser = parse_floats::<3>, allow_hyphen_values = true)]
+    color: Option<[f64; 3]>,
+}
+
+/// Parses exactly `N` comma-separated numbers (clap value parser).
+fn parse_floats<const N: usize>(text: &str) -> Result<[f64; N], String> {
+    let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+    if fields.len() != N {
+        return Err(format!(
+            "expected {N} comma-separated numbers, found {}",
+            fields.len()
+        ));
+    }
+    let mut out = [0.0; N];
+    for (slot, field) in out.iter_mut().zip(&fields) {
+        *slot = field
+            .parse()
+            .map_err(|_| format!("{field:?} is not a number"))?;
+    }
+    Ok(out)
+}
+
+/// A model ready to evaluate (one variant per [`Model`]).
+enum Evaluator {
+    Chiang(ChiangHair<f64>),
+}
+
+impl Evaluator {
+    /// `S(wi, wo, h)` per channel, no cosine factor.
+    fn eval(&self, wi: V3<f64>, wo: V3<f64>, h: f64) -> [f64; 3] {
+        match self {
+            Evaluator::Chiang(hair) => hair.eval(wi, wo, h),
+        }
+    }
+}
+
+impl EvalArgs {
+    /// sigma_a from whichever of `--sigma-a`, `--melanin`, `--color` was given.
+    fn sigma_a(&self) -> Result<Rgb, CliError> {
+        let params = |e: hairmath::ParamError| CliError::Params(e.to_string());
+        match (self.sigma_a, self.melanin, self.color) {
+            (Some(s), _, _) => Ok(s),
+            (_, Some([eu, pheo]), _) => sigma_a_from_melanin(eu, pheo).map_err(params),
+            (_, _, Some(c)) => sigma_a_from_color(c, self.beta_n).map_err(params),
+            // clap's ArgGroup makes this unreachable; report it rather than panic.
+            _ => Err(CliError::Params(
+                "one of --sigma-a, --melanin, --color is required".into(),
+            )),
+        }
+    }
+
+    /// Validates the parameters and builds the model.
+    fn evaluator(&self) -> Result<Evaluator, CliError> {
+        let sigma_a = self.sigma_a()?;
+        let params = ChiangParams::new(
+            self.beta_m,
+            self.beta_n,
+            self.alpha_deg.to_radians(),
+            self.eta,
+            sigma_a,
+        )
+        .map_err(|e| CliError::Params(e.to_string()))?;
+        match self.model {
+            Model::Chiang => Ok(Evaluator::Chiang(ChiangHair::new(&params))),
+        }
+    }
+}
+
+/// Runs `hairmath eval`: stdin to stdout, flushing what was written even on error.
+pub fn run(args: &EvalArgs) -> Result<(), CliError> {
+    let model = args.evaluator()?;
+    let mut out = BufWriter::new(io::stdout().lock());
+    let result = process(&model, io::stdin().lock(), &mut out);
+    let flushed = out.flush();
+    result?;
+    flushed.map_err(CliError::Io)
+}
+
+/// Reads the header and the rows from `input`, writes the extended CSV to `out`.
+fn process(model: &Evaluator, input: impl BufRead, out: &mut impl Write) -> Result<(), CliError> {
+    let mut lines = input.lines();
+    let header = match lines.next() {
+        None => return Err(CliError::input(1, "empty input: expected a header row")),
+        Some(line) => line.map_err(|e| read_error(1, e))?,
+    };
+    let columns = Columns::from_header(&header).map_err(|m| CliError::input(1, m))?;
+    writeln!(out, "{header},f_r,f_g,f_b")?;
+    for (index, line) in lines.enumerate() {
+        let number = index + 2;
+        let line = line.map_err(|e| read_error(number, e))?;
+        if line.trim().is_empty() {
+            continue;
+        }
+        let row = columns
+            .parse_row(&line)
+            .map_err(|m| CliError::input(number, m))?;
+        let [r, g, b] = model.eval(row.wi, row.wo, row.h);
+        writeln!(out, "{line},{r},{g},{b}")?;
+    }
+    Ok(())
+}
+
+/// A failed read, attributed to the line being read.
+fn read_error(line: usize, e: io::Error) -> CliError {
+    CliError::input(line, format!("cannot read input: {e}"))
+}
+
+/// Where the required columns are in the header.
+struct Columns {
+    /// Number of fields in the header (every row must have as many).
+    count: usize,
+    /// Field index of each name of [`REQUIRED`].
+    index: [usize; REQUIRED.len()],
+}
+
+/// One validated input row: unit directions and the offset.
+struct Row {
+    wi: V3<f64>,
+    wo: V3<f64>,
+    h: f64,
+}
+
+impl Columns {
+    /// Finds the required columns; names a missing or duplicated one.
+    fn from_header(header: &str) -> Result<Self, String> {
+        let names: Vec<&str> = header.split(',').map(str::trim).collect();
+        let mut index = [0; REQUIRED.len()];
+        let mut missing = Vec::new();
+        for (slot, &name) in index.iter_mut().zip(&REQUIRED) {
+            let mut found = names.iter().enumerate().filter(|(_, n)| **n == name);
+            match (found.next(), found.next()) {
+                (Some((i, _)), None) => *slot = i,
+                (Some(_), Some(_)) => return Err(format!("column {name} appears more than once")),
+                (None, _) => missing.push(name),
+            }
+        }
+        if !missing.is_empty() {
+            return Err(format!(
+                "header is missing column(s) {} (required: {})",
+                missing.join(", "),
+                REQUIRED.join(",")
+            ));
+        }
+        Ok(Columns {
+            count: names.len(),
+            index,
+        })
+    }
+
+    /// Parses and validates one data row.
+    fn parse_row(&self, line: &str) -> Result<Row, String> {
+        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+        if fields.len() != self.count {
+            return Err(format!(
+                "expected {} fields as in the header, found {}",
+                self.count,
+                fields.len()
+            ));
+        }
+        let mut v = [0.0; REQUIRED.len()];
+        for ((slot, &i), name) in v.iter_mut().zip(&self.index).zip(REQUIRED) {
+            *slot = parse_number(name, fields[i])?;
+        }
+        let wi = unit("wi", V3::new(v[0], v[1], v[2]))?;
+        let wo = unit("wo", V3::new(v[3], v[4], v[5]))?;
+        let h = v[6];
+        if !(-1.0..=1.0).contains(&h) {
+            return Err(format!("h = {h} is outside [-1, 1]"));
+        }
+        Ok(Row { wi, wo, h })
+    }
+}
+
+/// A finite number from the field of column `name`.
+fn parse_number(name: &str, field: &str) -> Result<f64, String> {
+    let value: f64 = field
+        .parse()
+        .map_err(|_| format!("column {name}: {field:?} is not a number"))?;
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(format!("column {name}: {field:?} is not a finite number"))
+    }
+}
+
+/// `w` normalised, if its length is 1 within [`UNIT_TOLERANCE`].
+fn unit(name: &str, w: V3<f64>) -> Result<V3<f64>, String> {
+    let length = w.dot(w).sqrt();
+    if (length - 1.0).abs() <= UNIT_TOLERANCE {
+        Ok(w.scale(1.0 / length))
+    } else {
+        Err(format!(
+            "{name} = ({}, {}, {}) has length {length}; directions must be unit vectors \
+             (within {UNIT_TOLERANCE})",
+            w.x, w.y, w.z
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn model() -> Evaluator {
+        let p = ChiangParams::new(0.3, 0.3, 0.035, 1.55, [0.5, 0.8, 1.4]).unwrap();
+        Evaluator::Chiang(ChiangHair::new(&p))
+    }
+
+    fn run_on(input: &str) -> (String, Result<(), CliError>) {
+        let mut out = Vec::new();
+        let result = process(&model(), input.as_bytes(), &mut out);
+        (String::from_utf8(out).unwrap(), result)
+    }
+
+    #[test]
+    fn columns_in_any_order_with_pass_through() {
+        let (out, result) = run_on("id, h,wo_z,wo_y,wo_x,wi_z,wi_y,wi_x\n7,0.1,0,1,0,0,0,1\n\n");
+        assert!(result.is_ok());
+        let lines: Vec<&str> = out.lines().collect();
+        assert_eq!(lines[0], "id, h,wo_z,wo_y,wo_x,wi_z,wi_y,wi_x,f_r,f_g,f_b");
+        assert!(lines[1].starts_with("7,0.1,0,1,0,0,0,1,"));
+        assert_eq!(lines.len(), 2);
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let (out, result) =
+            run_on("wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,h\n0,1,0,0,1,0,0\n0,1,0,0,2,0,0\n");
+        assert_eq!(out.lines().count(), 2);
+        let message = result.unwrap_err().to_string();
+        assert!(message.starts_with("line 3: wo = "), "{message}");
+        let (_, result) = run_on("wi_x,wi_y,wo_x,wo_y,wo_z,h\n");
+        let message = result.unwrap_err().to_string();
+        assert!(
+            message.contains("line 1") && message.contains("wi_z"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn value_parser_counts_fields() {
+        assert_eq!(parse_floats::<2>("1, -2").unwrap(), [1.0, -2.0]);
+        assert!(parse_floats::<3>("1,2").is_err());
+        assert!(parse_floats::<3>("1,x,2").is_err());
+    }
+}

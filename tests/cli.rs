@@ -1,0 +1,249 @@
+//! Integration tests of the `hairmath` command-line tool.
+
+use hairmath::bcsdf::{ChiangHair, ChiangParams};
+use hairmath::geometry::V3;
+use std::io::Write;
+use std::process::{Command, Output, Stdio};
+
+const HEADER: &str = "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,h";
+
+/// The standard flags of these tests: Chiang with sigma_a given directly.
+const FLAGS: [&str; 8] = [
+    "--beta-m",
+    "0.3",
+    "--beta-n",
+    "0.25",
+    "--alpha-deg",
+    "3",
+    "--sigma-a",
+    "0.5,0.8,1.4",
+];
+
+/// Runs `hairmath` with `args` and `stdin`.
+fn hairmath(args: &[&str], stdin: &str) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_hairmath"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary starts");
+    let mut input = child.stdin.take().expect("stdin is piped");
+    // The tool may exit before reading everything (argument errors): ignore a broken pipe.
+    let _ = input.write_all(stdin.as_bytes());
+    drop(input);
+    child.wait_with_output().expect("the binary runs")
+}
+
+/// `hairmath eval` with the standard flags plus `extra`.
+fn eval(extra: &[&str], stdin: &str) -> Output {
+    let mut args = vec!["eval"];
+    args.extend(FLAGS);
+    args.extend(extra);
+    hairmath(&args, stdin)
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The library's value for the standard flags, with directions normalised as the tool does.
+fn expected(wi: [f64; 3], wo: [f64; 3], h: f64) -> [f64; 3] {
+    let params = ChiangParams::new(0.3, 0.25, 3f64.to_radians(), 1.55, [0.5, 0.8, 1.4]).unwrap();
+    let unit = |w: [f64; 3]| {
+        let v = V3::new(w[0], w[1], w[2]);
+        v.scale(1.0 / v.dot(v).sqrt())
+    };
+    ChiangHair::<f64>::new(&params).eval(unit(wi), unit(wo), h)
+}
+
+/// The last three fields of a CSV line as numbers.
+fn appended(line: &str) -> [f64; 3] {
+    let fields: Vec<f64> = line
+        .rsplit(',')
+        .take(3)
+        .map(|f| f.parse().expect("a number"))
+        .collect();
+    [fields[2], fields[1], fields[0]]
+}
+
+/// Asserts a failure with status 2 whose stderr contains every one of `needles`.
+fn assert_fails_with(o: &Output, needles: &[&str]) {
+    assert_eq!(o.status.code(), Some(2), "stderr: {}", stderr(o));
+    let err = stderr(o);
+    for needle in needles {
+        assert!(err.contains(needle), "{needle:?} not in stderr: {err}");
+    }
+}
+
+#[test]
+fn eval_matches_the_library() {
+    let third = 1.0 / 3.0;
+    let rows = [
+        ([0.36, 0.48, 0.8], [-0.28, 0.96, 0.0], 0.4),
+        ([0.0, 1.0, 0.0], [0.0, -1.0, 0.0], -0.95),
+        ([2.0 * third, third, -2.0 * third], [0.6, 0.0, -0.8], 0.0),
+    ];
+    let mut input = format!("{HEADER}\n");
+    for (wi, wo, h) in rows {
+        input += &format!(
+            "{},{},{},{},{},{},{h}\n",
+            wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]
+        );
+    }
+    let o = eval(&[], &input);
+    assert!(o.status.success(), "stderr: {}", stderr(&o));
+    let out = stdout(&o);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 4, "{out}");
+    assert_eq!(lines[0], format!("{HEADER},f_r,f_g,f_b"));
+    for (line, (wi, wo, h)) in lines[1..].iter().zip(rows) {
+        let want = expected(wi, wo, h);
+        assert_eq!(appended(line), want, "{line}");
+        assert!(want.iter().all(|&v| v > 0.0));
+    }
+}
+
+#[test]
+fn eval_passes_other_columns_through_in_place() {
+    let input = "id , h,wo_x,wo_y,wo_z,label,wi_x,wi_y,wi_z\n\
+                 17,0.25,0,0.6,0.8,strand A,0.6,0.8,0\n";
+    let o = eval(&["--model", "chiang"], input);
+    assert!(o.status.success(), "stderr: {}", stderr(&o));
+    let out = stdout(&o);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(
+        lines[0],
+        "id , h,wo_x,wo_y,wo_z,label,wi_x,wi_y,wi_z,f_r,f_g,f_b"
+    );
+    assert!(lines[1].starts_with("17,0.25,0,0.6,0.8,strand A,0.6,0.8,0,"));
+    let want = expected([0.6, 0.8, 0.0], [0.0, 0.6, 0.8], 0.25);
+    assert_eq!(appended(lines[1]), want);
+}
+
+#[test]
+fn melanin_and_color_are_alternatives() {
+    let input = format!("{HEADER}\n0,1,0,0,0.6,0.8,0.1\n");
+    let base = ["eval", "--beta-m", "0.3", "--beta-n", "0.3"];
+    for flag in [["--melanin", "1.3,0.2"], ["--color", "0.5,0.3,0.1"]] {
+        let args: Vec<&str> = base.iter().chain(&flag).copied().collect();
+        let o = hairmath(&args, &input);
+        assert!(o.status.success(), "{flag:?}: {}", stderr(&o));
+        assert_eq!(stdout(&o).lines().count(), 2);
+    }
+}
+
+#[test]
+fn missing_flag_is_a_clap_error() {
+    let o = hairmath(&["eval", "--beta-n", "0.3", "--sigma-a", "0,0,0"], "");
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--beta-m"), "{}", stderr(&o));
+    let o = hairmath(&["eval", "--beta-m", "0.3", "--beta-n", "0.3"], "");
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--sigma-a"), "{}", stderr(&o));
+}
+
+#[test]
+fn two_absorption_flags_are_rejected() {
+    let o = eval(&["--melanin", "1,0"], &format!("{HEADER}\n"));
+    assert!(!o.status.success());
+    let err = stderr(&o);
+    assert!(
+        err.contains("--melanin") && err.contains("--sigma-a"),
+        "{err}"
+    );
+    assert!(stdout(&o).is_empty());
+}
+
+#[test]
+fn malformed_row_reports_its_line_after_earlier_output() {
+    let input = format!("{HEADER}\n0,1,0,0,1,0,0.5\n0,1,zero,0,1,0,0.5\n0,1,0,0,1,0,0.5\n");
+    let o = eval(&[], &input);
+    assert_fails_with(&o, &["line 3", "wi_z", "\"zero\""]);
+    let out = stdout(&o);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 2, "{out}");
+    assert_eq!(
+        appended(lines[1]),
+        expected([0.0, 1.0, 0.0], [0.0, 1.0, 0.0], 0.5)
+    );
+
+    let o = eval(&[], &format!("{HEADER}\n0,1,0,0,1,0\n"));
+    assert_fails_with(&o, &["line 2", "expected 7 fields", "found 6"]);
+    let o = eval(&[], &format!("{HEADER}\n0,1,0,0,1,0,NaN\n"));
+    assert_fails_with(&o, &["line 2", "column h", "not a finite number"]);
+}
+
+#[test]
+fn non_unit_vector_and_bad_h_are_rejected() {
+    let o = eval(&[], &format!("{HEADER}\n0,1,0,0,1,0,0\n0,1,0,0,1.1,0,0\n"));
+    assert_fails_with(&o, &["line 3", "wo = (0, 1.1, 0)", "length 1.1"]);
+    assert_eq!(stdout(&o).lines().count(), 2);
+    // Within the tolerance the direction is accepted (and normalised).
+    let o = eval(&[], &format!("{HEADER}\n0,1.0005,0,0,1,0,0\n"));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = eval(&[], &format!("{HEADER}\n0,1,0,0,1,0,1.5\n"));
+    assert_fails_with(&o, &["line 2", "h = 1.5", "[-1, 1]"]);
+}
+
+#[test]
+fn missing_column_is_reported_on_line_1() {
+    let o = eval(&[], "wi_x,wi_y,wi_z,wo_x,wo_y,h\n0,1,0,0,1,0\n");
+    assert_fails_with(&o, &["line 1", "wo_z"]);
+    assert!(stdout(&o).is_empty());
+}
+
+#[test]
+fn bad_parameters_are_rejected() {
+    let o = hairmath(
+        &[
+            "eval",
+            "--beta-m",
+            "0",
+            "--beta-n",
+            "0.3",
+            "--sigma-a",
+            "1,1,1",
+        ],
+        &format!("{HEADER}\n"),
+    );
+    assert_fails_with(&o, &["beta_m = 0", "(0, 1]"]);
+    let o = eval(&["--eta", "0.9"], &format!("{HEADER}\n"));
+    assert_fails_with(&o, &["eta = 0.9"]);
+    let o = hairmath(
+        &[
+            "eval",
+            "--beta-m",
+            "0.3",
+            "--beta-n",
+            "0.3",
+            "--sigma-a",
+            "-1,0,0",
+        ],
+        &format!("{HEADER}\n"),
+    );
+    assert_fails_with(&o, &["sigma_a = -1"]);
+}
+
+#[test]
+fn report_quick_prints_the_tables() {
+    let o = hairmath(&["report", "--quick"], "");
+    assert!(o.status.success(), "stderr: {}", stderr(&o));
+    let out = stdout(&o);
+    for needle in [
+        "| hair | eu | pheo | sigma_a (R, G, B) | R | TT | TRT | residual | total (R, G, B) |",
+        "| blonde |",
+        "| black |",
+        "White furnace",
+        "beta 0.9:",
+        "ns per call (f64)",
+        "ns per call (f32)",
+        "indicative; see `cargo bench` for criterion figures",
+    ] {
+        assert!(out.contains(needle), "{needle:?} not in:\n{out}");
+    }
+}

@@ -1,0 +1,680 @@
+//! Every public function generic over [`Real`] traced to shader code: the WGSL text must pass
+//! naga's parser and validator, and the traced graph interpreted in `f32`
+//! ([`Graph::eval_f32`]) must reproduce the `f32` instantiation bit for bit on about 200
+//! deterministic inputs per function, hard cases included (grazing directions, h = +-1,
+//! wi = +-wo, phi = 0 and +-pi, variance 1e-4 and 100, sigma_a 0 and 10, eta = 1.0001, large
+//! cuticle tilts).
+//!
+//! `coverage_matches_the_source` scans `src/` so that a new public generic function without a
+//! trace test here fails the suite.
+
+use hairmath::absorption::{segment_transmittance, PathLength};
+use hairmath::azimuthal::{
+    attenuations, attenuations_from_fresnel, exit_angle, exit_angle_of_offset, logistic,
+    logistic_cdf, refracted_offset, sample_trimmed_logistic, sample_wrapped_gaussian,
+    trimmed_logistic, trimmed_mass, wrapped_gaussian,
+};
+use hairmath::bcsdf::{ChiangHair, ChiangParams, CHIANG_CONSTANTS};
+use hairmath::fresnel::{
+    bravais_eta_parallel, bravais_eta_perpendicular, fresnel_dielectric, fresnel_schlick,
+};
+use hairmath::geometry::{
+    azimuth_between, fibre_angles, local_direction, local_fibre_angles, local_sin_cos_theta,
+    sin_cos_theta, FibreAngles, V3,
+};
+use hairmath::lobe::bessel::{i0, i0e_split, log_i0, log_i0e};
+use hairmath::lobe::{
+    deon_lobe, deon_lobe_sample_cos_theta, gaussian_lobe, hg_gerard_printed, DeonLobe,
+    HenyeyGreenstein,
+};
+use hairmath::real::{horner, pi, safe_asin, safe_sqrt, trace, wrap_angle, Graph, Real, Traced};
+use std::collections::BTreeSet;
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::path::Path;
+
+/// Inputs per function (at least; special-value combinations come first).
+const N: usize = 200;
+
+// ---------------------------------------------------------------------------------------------
+// The check.
+
+/// Validates `graph`'s WGSL with naga and compares `graph.eval_f32` with `f32_fn` bit for bit on
+/// every input row. Fails listing the differing rows; a NaN from the `f32` code also fails
+/// (every input row lies in the function's documented domain).
+fn check(name: &str, inputs: &[Vec<f32>], graph: &Graph, f32_fn: impl Fn(&[f32]) -> Vec<f32>) {
+    let words: Vec<&str> = name.split(|c: char| !c.is_ascii_alphanumeric()).collect();
+    let ident = words
+        .iter()
+        .filter(|w| !w.is_empty())
+        .copied()
+        .collect::<Vec<_>>();
+    let wgsl = graph.to_wgsl(&ident.join("_"));
+    if let Err(error) = validate_wgsl(&wgsl) {
+        panic!("{name}: naga rejects the traced WGSL:\n{wgsl}\n{error}");
+    }
+    let mut failures = Vec::new();
+    for x in inputs {
+        let (traced, cpu) = (graph.eval_f32(x), f32_fn(x));
+        let same = traced.len() == cpu.len()
+            && traced
+                .iter()
+                .zip(&cpu)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+        if !same || cpu.iter().any(|v| v.is_nan()) {
+            failures.push(format!("  in {x:?}\n  traced {traced:?}\n  f32    {cpu:?}"));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{name}: {} of {} inputs differ or give NaN, first ones:\n{}",
+        failures.len(),
+        inputs.len(),
+        failures[..failures.len().min(8)].join("\n")
+    );
+}
+
+/// The error of naga's WGSL front end or validator (all checks, all capabilities), if any.
+fn validate_wgsl(src: &str) -> Result<(), String> {
+    use naga::valid::{Capabilities, ValidationFlags, Validator};
+    let module = naga::front::wgsl::parse_str(src).map_err(|e| e.emit_to_string(src))?;
+    Validator::new(ValidationFlags::all(), Capabilities::all())
+        .validate(&module)
+        .map_err(|e| e.emit_to_string(src))?;
+    Ok(())
+}
+
+/// `case!(label, inputs, |x| body)`: traces `body` (an expression of the argument slice `x`
+/// returning `Vec<R>`, written once and instantiated for both `Traced` and `f32`) and runs
+/// [`check`] on it.
+macro_rules! case {
+    ($label:expr, $inputs:expr, |$x:ident| $body:expr) => {{
+        let inputs: Vec<Vec<f32>> = $inputs;
+        let graph = trace(inputs[0].len(), |$x: &[Traced]| $body);
+        check(&$label, &inputs, &graph, |$x: &[f32]| $body);
+    }};
+}
+
+/// One `#[test]` per entry, and `COVERED`: the function names the entries test, as
+/// [`scan_public_generic_functions`] spells them.
+macro_rules! traced_tests {
+    ($($test:ident [$($covers:literal),+] $body:block)*) => {
+        $(#[test] fn $test() $body)*
+        const COVERED: &[&str] = &[$($($covers),+),*];
+    };
+}
+
+// ---------------------------------------------------------------------------------------------
+// Deterministic inputs.
+
+/// The domain of one scalar argument: uniform on [lo, hi] (log-uniform when lo > 0 and the
+/// range spans three decades), with probability 1/4 one of the special values instead.
+#[derive(Clone, Copy)]
+struct Arg {
+    lo: f64,
+    hi: f64,
+    special: &'static [f64],
+}
+
+const fn arg(lo: f64, hi: f64, special: &'static [f64]) -> Arg {
+    Arg { lo, hi, special }
+}
+
+const ONE_MINUS_ULP: f64 = 1.0 - 1.0 / 16_777_216.0; // largest f32 below 1
+const SIN: Arg = arg(-1.0, 1.0, &[-1.0, 0.0, 1.0]); // also h and signed cosines
+const UNIT: Arg = arg(0.0, 1.0, &[0.0, 1.0]); // cosines >= 0, reflectances, transmittances
+const U: Arg = arg(0.0, 1.0, &[0.0, 0.5, ONE_MINUS_ULP]); // uniform samples in [0, 1)
+const ETA: Arg = arg(1.0001, 2.5, &[1.0001, 1.55, 2.5]);
+const ANGLE: Arg = arg(-PI, PI, &[0.0, PI, -PI]);
+const HALF_ANGLE: Arg = arg(-FRAC_PI_2, FRAC_PI_2, &[0.0, FRAC_PI_2, -FRAC_PI_2]);
+const LOBE: Arg = arg(0.0, 3.0, &[0.0, 1.0, 2.0, 3.0]);
+const VARIANCE: Arg = arg(1e-4, 100.0, &[1e-4, 100.0]);
+const BETA: Arg = arg(1e-2, 10.0, &[1e-2, 10.0]); // standard deviation: variance 1e-4 to 100
+const SCALE: Arg = arg(1e-3, 10.0, &[1e-3, 10.0]); // logistic scale s
+const SIGMA_A: Arg = arg(0.0, 10.0, &[0.0, 10.0]);
+/// cos(theta_t) >= sqrt(1 - 1/eta^2), 0.01414 for eta = 1.0001.
+const COS_THETA_T: Arg = arg(0.01414, 1.0, &[0.01414, 1.0]);
+const HG_G: Arg = arg(-0.99, 0.99, &[0.0, 0.752, -0.99, 0.99]);
+const BESSEL_X: Arg = arg(1e-6, 1e4, &[0.0, -1.0, 3.75, 3.7499998, 20.0, 1e4]);
+const I0_X: Arg = arg(-80.0, 80.0, &[0.0, 3.75, -3.75, 80.0, -80.0]);
+/// No -0.0: see `signed_zero_through_max_is_reproduced`.
+const SQRT_X: Arg = arg(-1.0, 100.0, &[0.0, -1e-7, 1.0]);
+const ASIN_X: Arg = arg(-1.5, 1.5, &[-1.5, -1.0, 0.0, 1.0, 1.5]);
+const WRAP_X: Arg = arg(-20.0, 20.0, &[0.0, PI, -PI, 2.0 * PI, -3.0 * PI]);
+const HORNER_X: Arg = arg(-4.0, 4.0, &[0.0, 1.0, -1.0]);
+
+/// Chiang materials: (beta_m, beta_n, alpha, eta, sigma_a, variance override for all lobes).
+type Material = (f64, f64, f64, f64, [f64; 3], Option<f64>);
+const MATERIALS: &[Material] = &[
+    (0.3, 0.3, 0.0349, 1.55, [0.545, 0.906, 1.781], None), // brown hair, 2 degree tilt
+    (0.0137, 0.01, 0.0, 1.0001, [0.0; 3], None),           // v0 = 1e-4, eta near 1, no absorption
+    (1.0, 1.0, -1.5, 2.4, [10.0; 3], None),                // roughest, large tilt, opaque
+    (0.1, 0.6, 1.5, 1.55, [0.0, 1.0, 10.0], None),
+    (0.5, 0.2, 0.0, 1.55, [0.2, 0.4, 0.8], Some(1e-4)),
+    (0.5, 0.2, 0.1, 1.55, [0.2, 0.4, 0.8], Some(100.0)),
+];
+
+fn params((beta_m, beta_n, alpha, eta, sigma_a, _): Material) -> ChiangParams {
+    ChiangParams::new(beta_m, beta_n, alpha, eta, sigma_a).unwrap()
+}
+
+/// A splitmix64 stream of deterministic pseudo-random inputs.
+struct Gen(u64);
+
+impl Gen {
+    fn uniform(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn below(&mut self, n: usize) -> usize {
+        ((self.uniform() * n as f64) as usize).min(n - 1)
+    }
+    fn pick(&mut self, a: &Arg) -> f64 {
+        if !a.special.is_empty() && self.uniform() < 0.25 {
+            a.special[self.below(a.special.len())]
+        } else if a.lo > 0.0 && a.hi > 1e3 * a.lo {
+            a.lo * (a.hi / a.lo).powf(self.uniform())
+        } else {
+            a.lo + (a.hi - a.lo) * self.uniform()
+        }
+    }
+    /// sin and cos of a longitudinal angle, grazing (sin = +-1) and normal (sin = 0) included.
+    fn sin_cos(&mut self) -> [f64; 2] {
+        let s = self.pick(&SIN);
+        [s, (1.0 - s * s).sqrt()]
+    }
+    fn dir_with_phi(&mut self, phi: f64) -> [f64; 3] {
+        let [s, c] = self.sin_cos();
+        [s, c * phi.cos(), c * phi.sin()]
+    }
+    /// A unit direction in the local frame (tangent +X).
+    fn dir(&mut self) -> [f64; 3] {
+        let phi = self.pick(&ANGLE);
+        self.dir_with_phi(phi)
+    }
+    /// wi and wo: equal, opposite, at relative azimuth 0 or pi, or independent.
+    fn pair(&mut self) -> Vec<f64> {
+        let phi = self.pick(&ANGLE);
+        let wi = self.dir_with_phi(phi);
+        let wo = match self.below(6) {
+            0 => wi,
+            1 => wi.map(|v| -v),
+            2 => self.dir_with_phi(phi),
+            3 => self.dir_with_phi(phi + PI),
+            _ => self.dir(),
+        };
+        [wi, wo].concat()
+    }
+    /// The constants of `ChiangHair::<f32>::new` and sigma_a, of one of `MATERIALS`.
+    fn hair(&mut self) -> Vec<f64> {
+        let m = MATERIALS[self.below(MATERIALS.len())];
+        let hair = ChiangHair::<f32>::new(&params(m));
+        let mut c = hair.constants().map(f64::from);
+        if let Some(v) = m.5 {
+            let v = [v, 0.25 * v, 4.0 * v, 4.0 * v];
+            for (p, &vp) in v.iter().enumerate() {
+                let lobe = DeonLobe::<f64>::new(vp);
+                (c[p], c[4 + p], c[8 + p]) = (vp, lobe.inv_v, lobe.norm);
+            }
+        }
+        [&c[..], &hair.sigma_a().map(f64::from)[..]].concat()
+    }
+}
+
+/// `N` rows built by `row`, rounded to `f32`.
+fn rows(mut row: impl FnMut(&mut Gen) -> Vec<f64>) -> Vec<Vec<f32>> {
+    let mut g = Gen(0x5eed);
+    (0..N)
+        .map(|_| row(&mut g).iter().map(|&v| v as f32).collect())
+        .collect()
+}
+
+/// Rows of independent scalar arguments: every combination of special values first (or, when
+/// there are too many, each special value of each argument with the others random), then
+/// random rows up to `N`.
+fn scalars(args: &[Arg]) -> Vec<Vec<f32>> {
+    let mut g = Gen(0x5ca1);
+    let combinations: usize = args.iter().map(|a| a.special.len().max(1)).product();
+    let mut out: Vec<Vec<f64>> = Vec::new();
+    if combinations <= N / 2 {
+        for k in 0..combinations {
+            // k in mixed radix: one digit per argument.
+            let mut rest = k;
+            let mut row = Vec::new();
+            for a in args {
+                let n = a.special.len().max(1);
+                row.push(
+                    a.special
+                        .get(rest % n)
+                        .copied()
+                        .unwrap_or_else(|| g.pick(a)),
+                );
+                rest /= n;
+            }
+            out.push(row);
+        }
+    } else {
+        for (j, a) in args.iter().enumerate() {
+            for &s in a.special {
+                let row = args.iter().enumerate().map(|(i, b)| match i == j {
+                    true => s,
+                    false => g.pick(b),
+                });
+                out.push(row.collect());
+            }
+        }
+    }
+    while out.len() < N {
+        out.push(args.iter().map(|a| g.pick(a)).collect());
+    }
+    out.iter()
+        .map(|r| r.iter().map(|&v| v as f32).collect())
+        .collect()
+}
+
+// ---------------------------------------------------------------------------------------------
+// Generic plumbing between argument slices and the library's types.
+
+fn arr<R: Copy, const K: usize>(x: &[R]) -> [R; K] {
+    core::array::from_fn(|i| x[i])
+}
+fn v3<R: Real>(x: &[R]) -> V3<R> {
+    V3::new(x[0], x[1], x[2])
+}
+fn of_v3<R: Real>(v: V3<R>) -> Vec<R> {
+    vec![v.x, v.y, v.z]
+}
+fn of_pair<R: Real>((a, b): (R, R)) -> Vec<R> {
+    vec![a, b]
+}
+fn angles<R: Real>(x: &[R]) -> FibreAngles<R> {
+    FibreAngles {
+        sin_theta_i: x[0],
+        cos_theta_i: x[1],
+        sin_theta_o: x[2],
+        cos_theta_o: x[3],
+        phi: x[4],
+    }
+}
+fn of_angles<R: Real>(a: FibreAngles<R>) -> Vec<R> {
+    vec![
+        a.sin_theta_i,
+        a.cos_theta_i,
+        a.sin_theta_o,
+        a.cos_theta_o,
+        a.phi,
+    ]
+}
+/// The model from the first CHIANG_CONSTANTS + 3 arguments: the constants, then sigma_a.
+fn chiang<R: Real>(x: &[R]) -> ChiangHair<R> {
+    const K: usize = CHIANG_CONSTANTS;
+    ChiangHair::from_constants(arr(&x[..K]), arr(&x[K..K + 3]))
+}
+/// Material, wi, wo, h: the arguments of `ChiangHair::eval` and `pdf`.
+fn chiang_rows() -> Vec<Vec<f32>> {
+    rows(|g| [g.hair(), g.pair(), vec![g.pick(&SIN)]].concat())
+}
+
+// ---------------------------------------------------------------------------------------------
+// The functions.
+
+traced_tests! {
+    real_pi ["pi"] {
+        case!("pi", vec![vec![]], |_x| vec![pi()]);
+    }
+    real_safe_sqrt ["safe_sqrt"] {
+        case!("safe_sqrt", scalars(&[SQRT_X]), |x| vec![safe_sqrt(x[0])]);
+    }
+    real_safe_asin ["safe_asin"] {
+        case!("safe_asin", scalars(&[ASIN_X]), |x| vec![safe_asin(x[0])]);
+    }
+    real_wrap_angle ["wrap_angle"] {
+        case!("wrap_angle", scalars(&[WRAP_X]), |x| vec![wrap_angle(x[0])]);
+    }
+    real_horner ["horner"] {
+        let as_9_8_2 = [0.39894228, 0.01328592, 0.00225319, -0.00157565, 0.00916281];
+        for c in [&[][..], &[2.5], &[1.0, -1.0, 0.5], &as_9_8_2] {
+            case!(format!("horner({c:?})"), scalars(&[HORNER_X]), |x| vec![horner(x[0], c)]);
+        }
+    }
+
+    geometry_v3 ["V3::new", "V3::c", "V3::dot", "V3::cross", "V3::scale"] {
+        let inputs = rows(|g| [g.pair(), vec![g.pick(&WRAP_X)]].concat());
+        case!("V3", inputs, |x| {
+            let (a, b) = (V3::new(x[0], x[1], x[2]), v3(&x[3..6]));
+            let (cross, scale_sub) = (of_v3(a.cross(b)), of_v3(a.scale(x[6]) - b));
+            [cross, scale_sub, vec![a.dot(b)], of_v3(V3::c(0.1, -2.0, 1e-30))].concat()
+        });
+    }
+    geometry_fibre_angles_methods [
+        "FibreAngles::theta_i", "FibreAngles::theta_o", "FibreAngles::theta_h",
+        "FibreAngles::theta_d"
+    ] {
+        let inputs = rows(|g| [&g.sin_cos()[..], &g.sin_cos()[..], &[g.pick(&ANGLE)]].concat());
+        case!("FibreAngles", inputs, |x| {
+            let a = angles(x);
+            vec![a.theta_i(), a.theta_o(), a.theta_h(), a.theta_d()]
+        });
+    }
+    geometry_sin_cos_theta ["sin_cos_theta"] {
+        let inputs = rows(|g| [g.dir(), g.dir()].concat());
+        case!("sin_cos_theta", inputs, |x| of_pair(sin_cos_theta(v3(x), v3(&x[3..]))));
+    }
+    geometry_local_sin_cos_theta ["local_sin_cos_theta"] {
+        let inputs = rows(|g| g.dir().to_vec());
+        case!("local_sin_cos_theta", inputs, |x| of_pair(local_sin_cos_theta(v3(x))));
+    }
+    geometry_azimuth_between ["azimuth_between"] {
+        // Tangent, then projections that need not be unit: b equal to a, opposite, zero, along
+        // the tangent, or independent.
+        let inputs = rows(|g| {
+            let (t, a) = (g.dir(), g.dir().map(|v| v * 3.0));
+            let b = match g.below(6) {
+                0 => a,
+                1 => a.map(|v| -v),
+                2 => [0.0; 3],
+                3 => t,
+                _ => g.dir(),
+            };
+            [t, a, b].concat()
+        });
+        case!("azimuth_between", inputs, |x| {
+            vec![azimuth_between(v3(x), v3(&x[3..]), v3(&x[6..]))]
+        });
+    }
+    geometry_fibre_angles ["fibre_angles"] {
+        // Tangent +X or any; wi sometimes along the tangent.
+        let inputs = rows(|g| {
+            let t = if g.below(3) == 0 { [1.0, 0.0, 0.0] } else { g.dir() };
+            let w = g.pair();
+            [&t[..], if g.below(4) == 0 { &t[..] } else { &w[..3] }, &w[3..]].concat()
+        });
+        case!("fibre_angles", inputs, |x| {
+            of_angles(fibre_angles(v3(x), v3(&x[3..]), v3(&x[6..])))
+        });
+    }
+    geometry_local_fibre_angles ["local_fibre_angles"] {
+        case!("local_fibre_angles", rows(|g| g.pair()), |x| {
+            of_angles(local_fibre_angles(v3(x), v3(&x[3..])))
+        });
+    }
+    geometry_local_direction ["local_direction"] {
+        let inputs = rows(|g| [&g.sin_cos()[..], &[g.pick(&ANGLE)]].concat());
+        case!("local_direction", inputs, |x| of_v3(local_direction(x[0], x[1], x[2])));
+    }
+
+    fresnel_dielectric_ ["fresnel_dielectric"] {
+        let inputs = scalars(&[SIN, ETA]);
+        case!("fresnel_dielectric", inputs, |x| vec![fresnel_dielectric(x[0], x[1])]);
+    }
+    fresnel_schlick_ ["fresnel_schlick"] {
+        let inputs = scalars(&[SIN, ETA]);
+        case!("fresnel_schlick", inputs, |x| vec![fresnel_schlick(x[0], x[1])]);
+    }
+    fresnel_bravais ["bravais_eta_perpendicular", "bravais_eta_parallel"] {
+        case!("bravais", scalars(&[ETA, SIN]), |x| {
+            vec![bravais_eta_perpendicular(x[0], x[1]), bravais_eta_parallel(x[0], x[1])]
+        });
+    }
+
+    absorption_segment_transmittance ["segment_transmittance"] {
+        for path in [PathLength::Chord, PathLength::Marschner2003] {
+            let inputs = scalars(&[SIGMA_A, UNIT, COS_THETA_T]);
+            case!(format!("segment_transmittance({path:?})"), inputs, |x| {
+                vec![segment_transmittance(x[0], x[1], x[2], path)]
+            });
+        }
+    }
+
+    bessel ["i0e_split", "log_i0e", "log_i0", "i0"] {
+        case!("i0e_split", scalars(&[BESSEL_X]), |x| of_pair(i0e_split(x[0])));
+        case!("log_i0e", scalars(&[BESSEL_X]), |x| vec![log_i0e(x[0]), log_i0(x[0])]);
+        case!("i0", scalars(&[I0_X]), |x| vec![i0(x[0])]);
+    }
+    lobe_deon ["deon_lobe", "DeonLobe::new", "DeonLobe::eval"] {
+        let inputs = rows(|g| [&[g.pick(&VARIANCE)][..], &g.sin_cos(), &g.sin_cos()].concat());
+        case!("deon_lobe", inputs, |x| {
+            let lobe = DeonLobe::new(x[0]);
+            vec![deon_lobe(x[0], x[1], x[2], x[3], x[4]), lobe.eval(x[1], x[2], x[3], x[4])]
+        });
+    }
+    lobe_deon_sample ["deon_lobe_sample_cos_theta"] {
+        let inputs = scalars(&[VARIANCE, U]);
+        case!("deon_lobe_sample", inputs, |x| vec![deon_lobe_sample_cos_theta(x[0], x[1])]);
+    }
+    lobe_gaussian ["gaussian_lobe"] {
+        case!("gaussian_lobe", scalars(&[BETA, ANGLE]), |x| vec![gaussian_lobe(x[0], x[1])]);
+    }
+    lobe_hg_gerard_printed ["hg_gerard_printed"] {
+        let inputs = scalars(&[HG_G, SIN]);
+        case!("hg_gerard_printed", inputs, |x| vec![hg_gerard_printed(x[0], x[1])]);
+    }
+    lobe_henyey_greenstein ["HenyeyGreenstein::eval"] {
+        // g is a per-lobe constant folded into the shader: one trace per g.
+        for g in [-0.9, 0.0, 0.3, 0.752, 0.99] {
+            let lobe = HenyeyGreenstein::new(g).unwrap();
+            let name = format!("HenyeyGreenstein::eval(g = {g})");
+            case!(name, scalars(&[SIN]), |x| vec![lobe.eval(x[0])]);
+        }
+    }
+
+    azimuthal_attenuations ["attenuations_from_fresnel", "attenuations"] {
+        case!("attenuations_from_fresnel", scalars(&[UNIT, UNIT]), |x| {
+            attenuations_from_fresnel(x[0], x[1]).to_vec()
+        });
+        case!("attenuations", scalars(&[UNIT, ETA, SIN, UNIT]), |x| {
+            attenuations(x[0], x[1], x[2], x[3]).to_vec()
+        });
+    }
+    azimuthal_exit_angle ["exit_angle", "refracted_offset", "exit_angle_of_offset"] {
+        let inputs = scalars(&[LOBE, HALF_ANGLE, HALF_ANGLE]);
+        case!("exit_angle", inputs, |x| vec![exit_angle(x[0], x[1], x[2])]);
+        let inputs = rows(|g| [&[g.pick(&SIN), g.pick(&ETA)][..], &g.sin_cos()].concat());
+        case!("refracted_offset", inputs, |x| vec![refracted_offset(x[0], x[1], x[2], x[3])]);
+        case!("exit_angle_of_offset", scalars(&[LOBE, SIN, ETA, SIN]), |x| {
+            vec![exit_angle_of_offset(x[0], x[1], x[2], x[3])]
+        });
+    }
+    azimuthal_logistic ["logistic", "logistic_cdf", "trimmed_logistic", "trimmed_mass", "sample_trimmed_logistic"] {
+        case!("logistic", scalars(&[ANGLE, SCALE]), |x| {
+            vec![logistic(x[0], x[1]), logistic_cdf(x[0], x[1]), trimmed_logistic(x[0], x[1]), trimmed_mass(x[1])]
+        });
+        let inputs = scalars(&[U, SCALE]);
+        case!("sample_trimmed_logistic", inputs, |x| vec![sample_trimmed_logistic(x[0], x[1])]);
+    }
+    azimuthal_wrapped_gaussian ["wrapped_gaussian", "sample_wrapped_gaussian"] {
+        let inputs = scalars(&[ANGLE, BETA]);
+        case!("wrapped_gaussian", inputs, |x| vec![wrapped_gaussian(x[0], x[1])]);
+        case!("sample_wrapped_gaussian", scalars(&[U, U, BETA]), |x| {
+            vec![sample_wrapped_gaussian(x[0], x[1], x[2])]
+        });
+    }
+
+    chiang_new ["ChiangHair::new"] {
+        // The constructor folds a material to constants: one trace without inputs per material.
+        for (k, &m) in MATERIALS.iter().enumerate() {
+            case!(format!("ChiangHair::new(MATERIALS[{k}])"), vec![vec![]], |_x| {
+                ChiangHair::new(&params(m)).constants().to_vec()
+            });
+        }
+    }
+    chiang_constants [
+        "ChiangHair::from_constants", "ChiangHair::constants", "ChiangHair::sigma_a"
+    ] {
+        case!("ChiangHair::constants", rows(|g| g.hair()), |x| {
+            let hair = chiang(x);
+            [&hair.constants()[..], &hair.sigma_a()[..]].concat()
+        });
+    }
+    chiang_eval ["ChiangHair::eval"] {
+        case!("ChiangHair::eval", chiang_rows(), |x| {
+            chiang(x).eval(v3(&x[15..]), v3(&x[18..]), x[21]).to_vec()
+        });
+    }
+    chiang_eval_lobes ["ChiangHair::eval_lobes"] {
+        case!("ChiangHair::eval_lobes", chiang_rows(), |x| {
+            chiang(x).eval_lobes(v3(&x[15..]), v3(&x[18..]), x[21]).concat()
+        });
+    }
+    chiang_pdf ["ChiangHair::pdf"] {
+        case!("ChiangHair::pdf", chiang_rows(), |x| {
+            vec![chiang(x).pdf(v3(&x[15..]), v3(&x[18..]), x[21])]
+        });
+    }
+    chiang_sample ["ChiangHair::sample"] {
+        // Material, wo, h, u[0], u[1], uc.
+        let inputs = rows(|g| {
+            let rest = [g.pick(&SIN), g.pick(&U), g.pick(&U), g.pick(&U)];
+            [&g.hair()[..], &g.dir(), &rest].concat()
+        });
+        case!("ChiangHair::sample", inputs, |x| {
+            let s = chiang(x).sample(v3(&x[15..]), x[18], [x[19], x[20]], x[21]);
+            [of_v3(s.wi), s.value.to_vec(), vec![s.pdf]].concat()
+        });
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Coverage.
+
+/// The public functions generic over `R: Real` in `src/`, found by plain text search.
+///
+/// What the scan matches: in every `.rs` file under `src/` (recursively), each line whose
+/// trimmed text starts with `pub fn `. Its signature is the text from there to the first `{`
+/// or `;` (so multi-line signatures and `where` clauses count). It is reported when the
+/// signature contains `R: Real`, or when the function sits in an `impl` block whose header
+/// line (trimmed, starting with `impl<` or `impl `) contains `R: Real`. An `impl` block ends at
+/// the first later line that is `}` at the header's indentation (rustfmt layout); one-line
+/// `impl ... {}` blocks are ignored. Names are `Type::method` inside an `impl` block (the
+/// implementing type, after ` for ` in trait impls) and the bare name otherwise.
+///
+/// Not matched: `pub(crate) fn`, `pub const fn`, `pub unsafe fn`, functions whose `Real` type
+/// parameter is not called `R`, and functions generated by macros.
+fn scan_public_generic_functions() -> BTreeSet<String> {
+    fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                rust_files(&path, out);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                out.push(path);
+            }
+        }
+    }
+    /// The implementing type of an `impl` header line.
+    fn impl_type(header: &str) -> String {
+        let mut rest = &header["impl".len()..];
+        if rest.starts_with('<') {
+            let mut depth = 0;
+            for (i, c) in rest.char_indices() {
+                depth += match c {
+                    '<' => 1,
+                    '>' => -1,
+                    _ => 0,
+                };
+                if depth == 0 {
+                    rest = &rest[i + 1..];
+                    break;
+                }
+            }
+        }
+        if let Some((_, ty)) = rest.split_once(" for ") {
+            rest = ty;
+        }
+        let rest = rest.trim_start();
+        let end = rest
+            .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .unwrap_or(rest.len());
+        rest[..end].to_string()
+    }
+
+    let mut files = Vec::new();
+    rust_files(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src"),
+        &mut files,
+    );
+    let mut found = BTreeSet::new();
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        // Open impl blocks: (indentation, type, generic over R: Real).
+        let mut impls: Vec<(usize, String, bool)> = Vec::new();
+        for (i, line) in lines.iter().enumerate() {
+            let code = line.trim_start();
+            let indent = line.len() - code.len();
+            if impls
+                .last()
+                .is_some_and(|(at, _, _)| *at == indent && code.starts_with('}'))
+            {
+                impls.pop();
+            } else if (code.starts_with("impl<") || code.starts_with("impl "))
+                && !code.ends_with('}')
+            {
+                impls.push((indent, impl_type(code), code.contains("R: Real")));
+            } else if let Some(rest) = code.strip_prefix("pub fn ") {
+                let signature = lines[i..].join("\n");
+                let signature = &signature[..signature.find(['{', ';']).unwrap_or(signature.len())];
+                let name: String = rest
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                let in_generic_impl = impls.last().is_some_and(|(_, _, generic)| *generic);
+                if signature.contains("R: Real") || in_generic_impl {
+                    found.insert(match impls.last() {
+                        Some((_, ty, _)) => format!("{ty}::{name}"),
+                        None => name,
+                    });
+                }
+            }
+        }
+    }
+    found
+}
+
+#[test]
+fn coverage_matches_the_source() {
+    let covered: BTreeSet<String> = COVERED.iter().map(|s| s.to_string()).collect();
+    assert_eq!(covered.len(), COVERED.len(), "a function is listed twice");
+    let public = scan_public_generic_functions();
+    let untested: Vec<_> = public.difference(&covered).collect();
+    let stale: Vec<_> = covered.difference(&public).collect();
+    assert!(
+        untested.is_empty() && stale.is_empty(),
+        "public generic functions without a trace test: {untested:?}; \
+         listed as traced but not found in src/: {stale:?}"
+    );
+}
+
+/// Regression: `f32::max` leaves the sign of a zero result unspecified, and rustc at opt-level 3
+/// folded `x.max(0.0)` with a constant operand differently from the interpreter's runtime
+/// `max(a, b)` (for x = -0.0 the `f32` `safe_sqrt` gave +0.0, the graph -0.0). `Real::max` and
+/// `Real::min` are now defined by one comparison, so both agree.
+#[test]
+fn signed_zero_through_max_is_reproduced() {
+    case!("safe_sqrt", vec![vec![-0.0]], |x| vec![safe_sqrt(x[0])]);
+}
+
+#[test]
+fn the_validator_rejects_bad_wgsl() {
+    assert!(validate_wgsl("fn f(x0: f32) -> f32 {\n    return x0;\n}\n").is_ok());
+    assert!(validate_wgsl("fn f(x0: f32) -> f32 {\n    return x1;\n}\n").is_err());
+    assert!(validate_wgsl("fn f(x0: f32) -> f32 {\n    return x0 < 1.0f;\n}\n").is_err());
+}
+
+#[test]
+fn the_scan_finds_known_functions() {
+    // Guards the scan itself: a free function, a method of a generic impl, a generic method
+    // of a plain impl, and a multi-line signature.
+    let public = scan_public_generic_functions();
+    for name in [
+        "pi",
+        "ChiangHair::eval",
+        "HenyeyGreenstein::eval",
+        "segment_transmittance",
+    ] {
+        assert!(public.contains(name), "{name} not found in {public:?}");
+    }
+    assert!(!public.contains("HenyeyGreenstein::new") && !public.contains("sigma_a_from_color"));
+}
