@@ -1,1 +1,214 @@
-fn main() {}
+//! Throughput of the Chiang 2016 hair BCSDF: evaluation, sampling and pdf in f64 and f32
+//! (scalar) and eval/pdf batched over `wide::f32x8` lanes.
+//!
+//! Every benchmark processes the same 1024 deterministic samples per iteration and reports
+//! `Throughput::Elements(1024)`, so criterion's time divided by 1024 is the cost of one
+//! evaluation. Material: beta_m = beta_n = 0.3, alpha = 2 degrees, eta = 1.55, sigma_a from
+//! eumelanin 1.3 (the Mitsuba 3 peer, `/work/shared/peers/mitsuba_hair_bench.py`, uses the same
+//! roughness, tilt and index).
+//!
+//! Run: `cargo bench --bench bcsdf` (or `-- batch` for the batched functions only).
+
+use std::hint::black_box;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use hairmath::absorption::sigma_a_from_melanin;
+use hairmath::bcsdf::{batch_model, eval_batch, pdf_batch, ChiangHair, ChiangParams};
+use hairmath::geometry::V3;
+use hairmath::real::Real;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+
+const N: usize = 1024;
+
+fn params() -> ChiangParams {
+    ChiangParams::new(
+        0.3,
+        0.3,
+        2.0_f64.to_radians(),
+        1.55,
+        sigma_a_from_melanin(1.3, 0.0).expect("valid melanin"),
+    )
+    .expect("valid parameters")
+}
+
+/// Deterministic inputs: uniform directions on the sphere, h uniform in [-1, 1], and three
+/// uniforms for sampling.
+struct Inputs {
+    wi: Vec<[f32; 3]>,
+    wo: Vec<[f32; 3]>,
+    h: Vec<f32>,
+    u: Vec<[f32; 3]>,
+}
+
+fn inputs() -> Inputs {
+    let mut rng = Pcg64Mcg::seed_from_u64(2016);
+    let unit = |rng: &mut Pcg64Mcg| {
+        let z: f32 = rng.random_range(-1.0..=1.0);
+        let phi: f32 = rng.random_range(0.0..core::f32::consts::TAU);
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        [r * phi.cos(), r * phi.sin(), z]
+    };
+    let mut out = Inputs {
+        wi: Vec::with_capacity(N),
+        wo: Vec::with_capacity(N),
+        h: Vec::with_capacity(N),
+        u: Vec::with_capacity(N),
+    };
+    for _ in 0..N {
+        out.wi.push(unit(&mut rng));
+        out.wo.push(unit(&mut rng));
+        out.h.push(rng.random_range(-1.0..=1.0));
+        out.u.push([rng.random(), rng.random(), rng.random()]);
+    }
+    out
+}
+
+fn v3<R: Real>(d: &[[f32; 3]]) -> Vec<V3<R>> {
+    d.iter()
+        .map(|v| V3::c(v[0] as f64, v[1] as f64, v[2] as f64))
+        .collect()
+}
+
+/// The scalar path in precision `R` over all N samples.
+struct Scalar<R> {
+    hair: ChiangHair<R>,
+    wi: Vec<V3<R>>,
+    wo: Vec<V3<R>>,
+    h: Vec<R>,
+    u: Vec<[R; 3]>,
+}
+
+impl<R: Real> Scalar<R> {
+    fn new(p: &ChiangParams, x: &Inputs) -> Self {
+        Scalar {
+            hair: ChiangHair::new(p),
+            wi: v3(&x.wi),
+            wo: v3(&x.wo),
+            h: x.h.iter().map(|&h| R::c(h as f64)).collect(),
+            u: x.u.iter().map(|u| u.map(|v| R::c(v as f64))).collect(),
+        }
+    }
+}
+
+fn bench_eval(c: &mut Criterion) {
+    let p = params();
+    let x = inputs();
+    let mut g = c.benchmark_group("eval");
+    g.throughput(Throughput::Elements(N as u64));
+
+    let s64 = Scalar::<f64>::new(&p, &x);
+    let mut out64 = vec![[0.0_f64; 3]; N];
+    g.bench_function(BenchmarkId::new("scalar", "f64"), |b| {
+        b.iter(|| {
+            let hair = black_box(&s64.hair);
+            for (k, o) in out64.iter_mut().enumerate() {
+                *o = hair.eval(s64.wi[k], s64.wo[k], s64.h[k]);
+            }
+            black_box(&mut out64);
+        })
+    });
+
+    let s32 = Scalar::<f32>::new(&p, &x);
+    let mut out32 = vec![[0.0_f32; 3]; N];
+    g.bench_function(BenchmarkId::new("scalar", "f32"), |b| {
+        b.iter(|| {
+            let hair = black_box(&s32.hair);
+            for (k, o) in out32.iter_mut().enumerate() {
+                *o = hair.eval(s32.wi[k], s32.wo[k], s32.h[k]);
+            }
+            black_box(&mut out32);
+        })
+    });
+
+    let hair8 = batch_model(&p);
+    g.bench_function(BenchmarkId::new("batch", "f32x8"), |b| {
+        b.iter(|| {
+            eval_batch(
+                black_box(&hair8),
+                black_box(&x.wi),
+                black_box(&x.wo),
+                black_box(&x.h),
+                &mut out32,
+            )
+            .expect("equal lengths");
+            black_box(&mut out32);
+        })
+    });
+    g.finish();
+}
+
+fn bench_sample(c: &mut Criterion) {
+    let p = params();
+    let x = inputs();
+    let mut g = c.benchmark_group("sample");
+    g.throughput(Throughput::Elements(N as u64));
+
+    fn run<R: Real>(
+        g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+        name: &str,
+        s: &Scalar<R>,
+    ) {
+        let mut out = Vec::with_capacity(N);
+        g.bench_function(BenchmarkId::new("scalar", name), |b| {
+            b.iter(|| {
+                out.clear();
+                let hair = black_box(&s.hair);
+                for k in 0..N {
+                    let [u0, u1, uc] = s.u[k];
+                    out.push(hair.sample(s.wo[k], s.h[k], [u0, u1], uc));
+                }
+                black_box(&mut out);
+            })
+        });
+    }
+    run(&mut g, "f64", &Scalar::<f64>::new(&p, &x));
+    run(&mut g, "f32", &Scalar::<f32>::new(&p, &x));
+    g.finish();
+}
+
+fn bench_pdf(c: &mut Criterion) {
+    let p = params();
+    let x = inputs();
+    let mut g = c.benchmark_group("pdf");
+    g.throughput(Throughput::Elements(N as u64));
+
+    fn run<R: Real>(
+        g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+        name: &str,
+        s: &Scalar<R>,
+    ) {
+        let mut out = vec![R::c(0.0); N];
+        g.bench_function(BenchmarkId::new("scalar", name), |b| {
+            b.iter(|| {
+                let hair = black_box(&s.hair);
+                for (k, o) in out.iter_mut().enumerate() {
+                    *o = hair.pdf(s.wi[k], s.wo[k], s.h[k]);
+                }
+                black_box(&mut out);
+            })
+        });
+    }
+    run(&mut g, "f64", &Scalar::<f64>::new(&p, &x));
+    run(&mut g, "f32", &Scalar::<f32>::new(&p, &x));
+
+    let hair8 = batch_model(&p);
+    let mut out = vec![0.0_f32; N];
+    g.bench_function(BenchmarkId::new("batch", "f32x8"), |b| {
+        b.iter(|| {
+            pdf_batch(
+                black_box(&hair8),
+                black_box(&x.wi),
+                black_box(&x.wo),
+                black_box(&x.h),
+                &mut out,
+            )
+            .expect("equal lengths");
+            black_box(&mut out);
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench_eval, bench_sample, bench_pdf);
+criterion_main!(benches);

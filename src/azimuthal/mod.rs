@@ -5,6 +5,7 @@
 mod attenuation;
 mod distribution;
 mod exit_angle;
+mod marschner;
 
 pub use attenuation::{attenuations, attenuations_from_fresnel, LOBES};
 pub use distribution::{
@@ -12,3 +13,8 @@ pub use distribution::{
     trimmed_mass, wrapped_gaussian, WRAPPED_GAUSSIAN_TERMS,
 };
 pub use exit_angle::{exit_angle, exit_angle_of_offset, refracted_offset};
+pub use marschner::{
+    marschner_attenuation, marschner_critical_angle, marschner_exit_angle,
+    marschner_exit_angle_derivative, marschner_fresnel, marschner_np, marschner_roots, trt_caustic,
+    CausticParams, RootList, TrtCaustic, MARSCHNER_MAX_P, MIN_DPHI_DH, ROOT_CAPACITY,
+};
