@@ -1,7 +1,9 @@
 //! Complete single-fibre scattering models with evaluation, importance sampling and pdf.
 
 mod chiang;
+mod far_field;
 
 pub use chiang::{
     logistic_scale, longitudinal_variance, ChiangHair, ChiangParams, HairSample, CHIANG_CONSTANTS,
 };
+pub use far_field::{ChiangFarField, FarFieldReference, FarFieldRule, MAX_FAR_FIELD_NODES};
