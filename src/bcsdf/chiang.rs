@@ -159,12 +159,44 @@ pub struct HairSample<R> {
     pub pdf: R,
 }
 
-/// Per-lobe quantities shared by evaluation and the pdf.
-struct Lobes<R> {
-    /// M_p N_p (and M_3 / 2 pi), no attenuation.
-    mn: [R; LOBES],
-    /// A_p per channel.
-    a: [[R; 3]; LOBES],
+/// The factors of every lobe for one direction pair: the longitudinal `M_p`, and the azimuthal
+/// factors at one offset (near field) or averaged over offsets (far field). Evaluation, the pdf
+/// and the per-lobe split are sums over them.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LobeTerms<R> {
+    /// M_p, tilted, for p = 0..3.
+    pub m: [R; LOBES],
+    /// A_p N_p per channel (N_3 = 1 / 2 pi).
+    pub an: [[R; 3]; LOBES],
+    /// (probability of choosing lobe p) N_p.
+    pub wn: [R; LOBES],
+}
+
+impl<R: Real> LobeTerms<R> {
+    /// `S = sum_p M_p A_p N_p` per channel.
+    pub fn value(&self) -> [R; 3] {
+        core::array::from_fn(|c| {
+            let mut sum = R::c(0.0);
+            for (m, an) in self.m.iter().zip(&self.an) {
+                sum += *m * an[c];
+            }
+            sum
+        })
+    }
+
+    /// `pdf = sum_p M_p w_p N_p`.
+    pub fn pdf(&self) -> R {
+        let mut pdf = R::c(0.0);
+        for (m, wn) in self.m.iter().zip(&self.wn) {
+            pdf += *m * *wn;
+        }
+        pdf
+    }
+
+    /// `M_p A_p N_p` per lobe and channel.
+    pub fn per_lobe(&self) -> [[R; 3]; LOBES] {
+        core::array::from_fn(|p| self.an[p].map(|an| self.m[p] * an))
+    }
 }
 
 impl<R: Real> ChiangHair<R> {
@@ -229,6 +261,11 @@ impl<R: Real> ChiangHair<R> {
         self.sigma_a
     }
 
+    /// Relative index of refraction.
+    pub fn eta(&self) -> R {
+        self.eta
+    }
+
     /// `[v_0..v_3, 1/v_0..1/v_3, the four d'Eon normalisations, s, 1/(logistic mass),
     /// sin alpha, sin 2alpha, sin 4alpha, cos alpha, cos 2alpha, cos 4alpha, eta]`: the
     /// material constants (sigma_a travels separately).
@@ -286,49 +323,70 @@ impl<R: Real> ChiangHair<R> {
         (safe_asin(h), safe_asin(sin_gamma_t), transmittance, fresnel)
     }
 
-    fn lobes(&self, wi: V3<R>, wo: V3<R>, h: R) -> Lobes<R> {
-        let one = R::c(1.0);
-        let h = h.clamp(-one, one);
-        let (sin_o, cos_o) = local_sin_cos_theta(wo);
-        let (sin_i, cos_i) = local_sin_cos_theta(wi);
-        let phi = azimuth_between(V3::c(1.0, 0.0, 0.0), normal_plane(wo), normal_plane(wi));
+    /// M_p for p = 0..3 with the tilt of each lobe.
+    pub(crate) fn longitudinal(&self, sin_i: R, cos_i: R, sin_o: R, cos_o: R) -> [R; LOBES] {
+        core::array::from_fn(|p| {
+            let (sin_op, cos_op) = self.tilted(p, sin_o, cos_o);
+            self.lobe[p].eval(sin_i, cos_i, sin_op, cos_op)
+        })
+    }
+
+    /// The azimuthal factors at offset `h` (clamped to [-1, 1]) for relative azimuth
+    /// `phi = phi_i - phi_o`: `(A_p N_p per channel, w_p N_p)`.
+    pub(crate) fn azimuthal(&self, sin_o: R, cos_o: R, phi: R, h: R) -> ([[R; 3]; LOBES], [R; LOBES]) {
+        let h = h.clamp(R::c(-1.0), R::c(1.0));
         let (gamma_o, gamma_t, transmittance, fresnel) = self.path(sin_o, cos_o, h);
         let per_channel = transmittance.map(|t| attenuations_from_fresnel(fresnel, t));
-        let a = core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
-        let mut mn = [R::c(0.0); LOBES];
-        for (p, slot) in mn.iter_mut().enumerate() {
-            let (sin_op, cos_op) = self.tilted(p, sin_o, cos_o);
-            let m = self.lobe[p].eval(sin_i, cos_i, sin_op, cos_op);
-            let n = if p < 3 {
+        let a: [[R; 3]; LOBES] =
+            core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
+        let w = Self::lobe_weights(&a);
+        let n: [R; LOBES] = core::array::from_fn(|p| {
+            if p < 3 {
                 let dphi = wrap_angle(phi - exit_angle(R::c(p as f64), gamma_o, gamma_t));
                 logistic(dphi, self.s) * self.inv_mass
             } else {
                 R::c(0.5 * core::f64::consts::FRAC_1_PI)
-            };
-            *slot = m * n;
-        }
-        Lobes { mn, a }
+            }
+        });
+        (core::array::from_fn(|p| a[p].map(|x| x * n[p])), core::array::from_fn(|p| w[p] * n[p]))
+    }
+
+    /// The angles of a direction pair: (sin_i, cos_i, sin_o, cos_o, phi_i - phi_o).
+    pub(crate) fn angles(wi: V3<R>, wo: V3<R>) -> (R, R, R, R, R) {
+        let (sin_o, cos_o) = local_sin_cos_theta(wo);
+        let (sin_i, cos_i) = local_sin_cos_theta(wi);
+        let phi = azimuth_between(V3::c(1.0, 0.0, 0.0), normal_plane(wo), normal_plane(wi));
+        (sin_i, cos_i, sin_o, cos_o, phi)
+    }
+
+    /// The lobe factors for a direction pair and an azimuthal part computed by `azimuthal`
+    /// from (sin_o, cos_o, phi).
+    pub(crate) fn terms_with(
+        &self,
+        wi: V3<R>,
+        wo: V3<R>,
+        azimuthal: impl FnOnce(R, R, R) -> ([[R; 3]; LOBES], [R; LOBES]),
+    ) -> LobeTerms<R> {
+        let (sin_i, cos_i, sin_o, cos_o, phi) = Self::angles(wi, wo);
+        let (an, wn) = azimuthal(sin_o, cos_o, phi);
+        LobeTerms { m: self.longitudinal(sin_i, cos_i, sin_o, cos_o), an, wn }
+    }
+
+    fn terms(&self, wi: V3<R>, wo: V3<R>, h: R) -> LobeTerms<R> {
+        self.terms_with(wi, wo, |sin_o, cos_o, phi| self.azimuthal(sin_o, cos_o, phi, h))
     }
 
     /// `S(wi, wo, h)` per channel, for unit `wi`, `wo` in the local frame and offset `h` in
     /// [-1, 1] (clamped). No cosine factor (see the module documentation). Finite and
     /// non-negative for every finite input.
     pub fn eval(&self, wi: V3<R>, wo: V3<R>, h: R) -> [R; 3] {
-        let lobes = self.lobes(wi, wo, h);
-        core::array::from_fn(|c| {
-            let mut sum = R::c(0.0);
-            for p in 0..LOBES {
-                sum += lobes.mn[p] * lobes.a[p][c];
-            }
-            sum
-        })
+        self.terms(wi, wo, h).value()
     }
 
     /// The contribution `M_p A_p N_p` of each lobe (R, TT, TRT, residual) per channel; they sum
     /// to [`ChiangHair::eval`].
     pub fn eval_lobes(&self, wi: V3<R>, wo: V3<R>, h: R) -> [[R; 3]; LOBES] {
-        let lobes = self.lobes(wi, wo, h);
-        core::array::from_fn(|p| lobes.a[p].map(|a| lobes.mn[p] * a))
+        self.terms(wi, wo, h).per_lobe()
     }
 
     /// Probability of choosing each lobe when sampling from wo: the channel-averaged A_p,
@@ -341,19 +399,20 @@ impl<R: Real> ChiangHair<R> {
 
     /// Solid-angle density of [`ChiangHair::sample`] choosing `wi` given `wo` and `h`.
     pub fn pdf(&self, wi: V3<R>, wo: V3<R>, h: R) -> R {
-        let lobes = self.lobes(wi, wo, h);
-        let w = Self::lobe_weights(&lobes.a);
-        let mut pdf = R::c(0.0);
-        for (mn, weight) in lobes.mn.iter().zip(w) {
-            pdf += *mn * weight;
-        }
-        pdf
+        self.terms(wi, wo, h).pdf()
     }
 
     /// Importance-samples wi given wo and h from three uniforms in [0, 1): `uc` chooses the lobe
     /// (and, remapped, the azimuth), `u[0]` the longitudinal angle, `u[1]` the azimuth of the
     /// longitudinal cone (d'Eon 2013; pbrt-v4 `Sample_f`). Branch-free, so it traces.
     pub fn sample(&self, wo: V3<R>, h: R, u: [R; 2], uc: R) -> HairSample<R> {
+        let wi = self.sample_direction(wo, h, u, uc);
+        let terms = self.terms(wi, wo, h);
+        HairSample { wi, value: terms.value(), pdf: terms.pdf() }
+    }
+
+    /// The direction [`ChiangHair::sample`] draws, without evaluating S and the pdf there.
+    pub(crate) fn sample_direction(&self, wo: V3<R>, h: R, u: [R; 2], uc: R) -> V3<R> {
         let one = R::c(1.0);
         let h = h.clamp(-one, one);
         let (sin_o, cos_o) = local_sin_cos_theta(wo);
@@ -400,12 +459,7 @@ impl<R: Real> ChiangHair<R> {
             exit_angle(p, gamma_o, gamma_t) + sample_trimmed_logistic(uc, self.s),
         );
         let phi_o = azimuth_between(V3::c(1.0, 0.0, 0.0), V3::c(0.0, 1.0, 0.0), wo);
-        let wi = local_direction(sin_i, cos_i, wrap_angle(phi_o + wrap_angle(dphi)));
-        HairSample {
-            wi,
-            value: self.eval(wi, wo, h),
-            pdf: self.pdf(wi, wo, h),
-        }
+        local_direction(sin_i, cos_i, wrap_angle(phi_o + wrap_angle(dphi)))
     }
 }
 

@@ -1,0 +1,233 @@
+//! The far-field hair BCSDF: the near-field model of [`ChiangHair`] averaged over the offset h,
+//! for renderers that do not know where on the fibre's width light lands.
+//!
+//! `S(wi, wo) = sum_p M_p(theta_i; theta_o^(p)) N_p(phi)`, with
+//! `N_p(phi) = 1/2 int_{-1}^{1} A_p(h) D(phi - Phi(p, h)) dh` (Marschner et al. 2003, eq. 8 with
+//! roughness; d'Eon et al. 2011, eq. 12; Chiang et al. 2016, section 3.2).
+//!
+//! Two integrators for N_p:
+//! - [`FarFieldRule`]: fixed nodes, written generically so it runs in f32, f64, SIMD and
+//!   traces to shader code. The integral is taken over gamma = asin(h), where the integrand
+//!   `A_p(sin gamma) D(...) cos(gamma) / 2` is smooth at the fibre's edges (in h it has
+//!   square-root endpoints), with Gauss-Legendre nodes; the weights are renormalised to sum to 1,
+//!   so the rule is exact for constant integrands and energy is conserved exactly.
+//! - [`ChiangHair::far_field_reference`]: adaptive, f64, with an error estimate; breakpoints at
+//!   the offsets where phi = Phi(p, h) keep the narrow peaks of low roughness resolved.
+//!
+//! The fast model [`ChiangFarField`] is defined by its rule: evaluation, the pdf and sampling use
+//! the same nodes, so `value / pdf` is exactly 1 without absorption and the sampler's density is
+//! exactly the returned pdf. Its distance from the exact far field is the rule's integration
+//! error, measured against the reference (README).
+
+use super::chiang::{ChiangHair, HairSample, LobeTerms};
+use crate::azimuthal::{exit_angle, refracted_offset, LOBES};
+use crate::error::ParamError;
+use crate::geometry::V3;
+use crate::quadrature::{adaptive, gauss_legendre};
+use crate::real::{safe_asin, wrap_angle, Real};
+
+/// Fixed quadrature nodes over the offset: (h_k, P_k) with P_k >= 0 summing to 1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FarFieldRule {
+    nodes: Vec<(f64, f64)>,
+}
+
+/// Largest node count of a [`FarFieldRule`].
+pub const MAX_FAR_FIELD_NODES: usize = 512;
+
+impl FarFieldRule {
+    /// `n` Gauss-Legendre nodes in gamma = asin(h) on [-pi/2, pi/2], weights `w_k cos(gamma_k) / 2`
+    /// renormalised to sum to 1.
+    ///
+    /// # Errors
+    /// `n` outside 1..=512.
+    pub fn gauss_legendre(n: usize) -> Result<Self, ParamError> {
+        ParamError::check("nodes", n as f64, "the node count must be in 1..=512", |v| {
+            (1.0..=MAX_FAR_FIELD_NODES as f64).contains(&v)
+        })?;
+        let half_pi = core::f64::consts::FRAC_PI_2;
+        let raw: Vec<(f64, f64)> = gauss_legendre(n)
+            .into_iter()
+            .map(|(x, w)| (half_pi * x, half_pi * w * (half_pi * x).cos() * 0.5))
+            .collect();
+        let total: f64 = raw.iter().map(|&(_, w)| w).sum();
+        Ok(FarFieldRule { nodes: raw.into_iter().map(|(g, w)| (g.sin(), w / total)).collect() })
+    }
+
+    /// The (h_k, P_k) pairs.
+    pub fn nodes(&self) -> &[(f64, f64)] {
+        &self.nodes
+    }
+}
+
+/// The far-field Chiang model with a fixed-node integrator over h, in the working precision `R`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChiangFarField<R> {
+    hair: ChiangHair<R>,
+    /// (h_k, P_k) rounded to R.
+    nodes: Vec<(R, R)>,
+}
+
+impl<R: Real> ChiangFarField<R> {
+    /// The far field of `hair` integrated with `rule`.
+    pub fn new(hair: ChiangHair<R>, rule: &FarFieldRule) -> Self {
+        ChiangFarField { hair, nodes: rule.nodes.iter().map(|&(h, p)| (R::c(h), R::c(p))).collect() }
+    }
+
+    /// The near-field model this averages.
+    pub fn near_field(&self) -> &ChiangHair<R> {
+        &self.hair
+    }
+
+    /// `(N_p A_p per channel, w_p N_p)` averaged over the rule's offsets, for relative azimuth
+    /// `phi = phi_i - phi_o` and the inclination of wo. `N_p` here includes the attenuation:
+    /// `1/2 int A_p(h) D(phi - Phi(p, h)) dh`.
+    pub fn azimuthal(&self, sin_o: R, cos_o: R, phi: R) -> ([[R; 3]; LOBES], [R; LOBES]) {
+        let mut an = [[R::c(0.0); 3]; LOBES];
+        let mut wn = [R::c(0.0); LOBES];
+        for &(h, weight) in &self.nodes {
+            let (a, w) = self.hair.azimuthal(sin_o, cos_o, phi, h);
+            for p in 0..LOBES {
+                for c in 0..3 {
+                    an[p][c] += weight * a[p][c];
+                }
+                wn[p] += weight * w[p];
+            }
+        }
+        (an, wn)
+    }
+
+    fn terms(&self, wi: V3<R>, wo: V3<R>) -> LobeTerms<R> {
+        self.hair.terms_with(wi, wo, |sin_o, cos_o, phi| self.azimuthal(sin_o, cos_o, phi))
+    }
+
+    /// `S(wi, wo)` per channel, for unit directions in the local frame (tangent +X). No cosine
+    /// factor: with sigma_a = 0 its integral over all wi is 1.
+    pub fn eval(&self, wi: V3<R>, wo: V3<R>) -> [R; 3] {
+        self.terms(wi, wo).value()
+    }
+
+    /// `M_p N_p` of each lobe (R, TT, TRT, residual) per channel; they sum to `eval`.
+    pub fn eval_lobes(&self, wi: V3<R>, wo: V3<R>) -> [[R; 3]; LOBES] {
+        self.terms(wi, wo).per_lobe()
+    }
+
+    /// Solid-angle density of [`ChiangFarField::sample`].
+    pub fn pdf(&self, wi: V3<R>, wo: V3<R>) -> R {
+        self.terms(wi, wo).pdf()
+    }
+
+    /// Samples wi given wo from four uniforms in [0, 1): `uh` picks an offset node with
+    /// probability P_k, then the near-field sampler draws from (`u`, `uc`) at that offset.
+    /// Branch-free (the node is chosen by selects), so it traces.
+    pub fn sample(&self, wo: V3<R>, u: [R; 2], uc: R, uh: R) -> HairSample<R> {
+        // Node k is chosen when P_0 + ... + P_{k-1} <= uh < P_0 + ... + P_k.
+        let (mut h, mut lower) = self.nodes[0];
+        for &(node_h, weight) in &self.nodes[1..] {
+            h = R::select(lower.le(uh), node_h, h);
+            lower += weight;
+        }
+        let wi = self.hair.sample_direction(wo, h, u, uc);
+        let terms = self.terms(wi, wo);
+        HairSample { wi, value: terms.value(), pdf: terms.pdf() }
+    }
+}
+
+/// The reference far field at one direction pair: per-lobe `M_p N_p` per channel, the pdf's
+/// counterpart, and the integrator's error estimate (absolute, on the largest `N_p` component).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FarFieldReference {
+    /// `M_p N_p` per lobe and channel.
+    pub lobes: [[f64; 3]; LOBES],
+    /// `S` per channel (the sum of the lobes).
+    pub value: [f64; 3],
+    /// `N_p A_p` per lobe and channel, without `M_p`.
+    pub azimuthal: [[f64; 3]; LOBES],
+    /// Error estimate of the `N_p` integrals (absolute).
+    pub error: f64,
+}
+
+impl ChiangHair<f64> {
+    /// The offsets h in (-1, 1) where `phi = Phi(p, h)` (mod 2 pi) for p = 0, 1, 2: the peaks of
+    /// the far-field integrand, found by scanning gamma = asin h on 512 intervals and bisecting
+    /// sign changes of the wrapped difference (jumps of the wrap are excluded). Returned as gamma.
+    fn peak_offsets(&self, sin_o: f64, cos_o: f64, phi: f64) -> Vec<f64> {
+        let eta = self.eta();
+        let half_pi = core::f64::consts::FRAC_PI_2;
+        let residual = |p: usize, gamma: f64| {
+            let h = gamma.sin();
+            let gamma_t = safe_asin(refracted_offset(h, eta, sin_o, cos_o));
+            wrap_angle(phi - exit_angle(p as f64, gamma, gamma_t))
+        };
+        let mut roots = Vec::new();
+        let n = 512;
+        let step = 2.0 * half_pi / n as f64;
+        for p in 0..3 {
+            for k in 0..n {
+                let mut lo = -half_pi + k as f64 * step;
+                let mut hi = lo + step;
+                let (flo, fhi) = (residual(p, lo), residual(p, hi));
+                if flo * fhi > 0.0 || (flo - fhi).abs() > 1.0 {
+                    continue;
+                }
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    if residual(p, mid) * flo > 0.0 {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                roots.push(0.5 * (lo + hi));
+            }
+        }
+        roots
+    }
+
+    /// The far-field `N_p A_p` (per lobe and channel) for relative azimuth `phi = phi_i - phi_o`
+    /// and the inclination of wo, by adaptive integration over gamma = asin h with breakpoints at
+    /// the peaks, to relative tolerance `rel_tol` of the largest component. Returns the values and
+    /// the error estimate.
+    pub fn far_field_azimuthal_reference(
+        &self,
+        sin_o: f64,
+        cos_o: f64,
+        phi: f64,
+        rel_tol: f64,
+    ) -> ([[f64; 3]; LOBES], f64) {
+        let breaks = self.peak_offsets(sin_o, cos_o, phi);
+        let half_pi = core::f64::consts::FRAC_PI_2;
+        let (flat, error) = adaptive(
+            |gamma| {
+                let (an, _) = self.azimuthal(sin_o, cos_o, phi, gamma.sin());
+                let weight = 0.5 * gamma.cos();
+                let mut out = [0.0; 3 * LOBES];
+                for p in 0..LOBES {
+                    for c in 0..3 {
+                        out[3 * p + c] = weight * an[p][c];
+                    }
+                }
+                out
+            },
+            -half_pi,
+            half_pi,
+            &breaks,
+            rel_tol,
+            1e-300,
+        );
+        (core::array::from_fn(|p| [flat[3 * p], flat[3 * p + 1], flat[3 * p + 2]]), error)
+    }
+
+    /// The far-field S at (wi, wo) with the reference integrator (see
+    /// [`ChiangHair::far_field_azimuthal_reference`]).
+    pub fn far_field_reference(&self, wi: V3<f64>, wo: V3<f64>, rel_tol: f64) -> FarFieldReference {
+        let (sin_i, cos_i, sin_o, cos_o, phi) = Self::angles(wi, wo);
+        let (azimuthal, error) = self.far_field_azimuthal_reference(sin_o, cos_o, phi, rel_tol);
+        let terms = LobeTerms {
+            m: self.longitudinal(sin_i, cos_i, sin_o, cos_o),
+            an: azimuthal,
+            wn: [0.0; LOBES],
+        };
+        FarFieldReference { lobes: terms.per_lobe(), value: terms.value(), azimuthal, error }
+    }
+}
