@@ -8,6 +8,7 @@ pub mod error;
 pub mod fresnel;
 pub mod geometry;
 pub mod lobe;
+pub mod lut;
 pub mod quadrature;
 pub mod real;
 pub mod sh;

@@ -1,7 +1,8 @@
 //! Integration tests of the `hairmath` command-line tool.
 
-use hairmath::bcsdf::{ChiangHair, ChiangParams};
+use hairmath::bcsdf::{ChiangFarField, ChiangHair, ChiangParams, FarFieldRule};
 use hairmath::geometry::V3;
+use hairmath::sh::gaunt::{gaunt_complex, gaunt_real};
 use std::io::Write;
 use std::process::{Command, Output, Stdio};
 
@@ -51,14 +52,21 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// The model of the standard flags.
+fn standard_hair() -> ChiangHair<f64> {
+    let params = ChiangParams::new(0.3, 0.25, 3f64.to_radians(), 1.55, [0.5, 0.8, 1.4]).unwrap();
+    ChiangHair::new(&params)
+}
+
+/// `w` normalised, as the tool does.
+fn unit(w: [f64; 3]) -> V3<f64> {
+    let v = V3::new(w[0], w[1], w[2]);
+    v.scale(1.0 / v.dot(v).sqrt())
+}
+
 /// The library's value for the standard flags, with directions normalised as the tool does.
 fn expected(wi: [f64; 3], wo: [f64; 3], h: f64) -> [f64; 3] {
-    let params = ChiangParams::new(0.3, 0.25, 3f64.to_radians(), 1.55, [0.5, 0.8, 1.4]).unwrap();
-    let unit = |w: [f64; 3]| {
-        let v = V3::new(w[0], w[1], w[2]);
-        v.scale(1.0 / v.dot(v).sqrt())
-    };
-    ChiangHair::<f64>::new(&params).eval(unit(wi), unit(wo), h)
+    standard_hair().eval(unit(wi), unit(wo), h)
 }
 
 /// The last three fields of a CSV line as numbers.
@@ -243,7 +251,217 @@ fn report_quick_prints_the_tables() {
         "ns per call (f64)",
         "ns per call (f32)",
         "indicative; see `cargo bench` for criterion figures",
+        "## Far field",
+        "| hair | R | TT | TRT | residual | total (R, G, B) | vs near |",
+        "### Far-field white furnace",
+        "### Far-field integrator",
+        "| beta_n | ref us | ref refinement | N = 8 | N = 16 | N = 32 | N = 64 | N = 128 |",
+        "| 0.05 | ",
+        "| ns per fast N_p |",
     ] {
         assert!(out.contains(needle), "{needle:?} not in:\n{out}");
     }
+}
+
+/// Direction pairs of the far-field tests.
+const FAR_ROWS: [([f64; 3], [f64; 3]); 3] = [
+    ([0.36, 0.48, 0.8], [-0.28, 0.96, 0.0]),
+    ([0.0, 1.0, 0.0], [0.0, -1.0, 0.0]),
+    ([0.6, 0.0, -0.8], [0.0, 0.6, 0.8]),
+];
+
+/// `FAR_ROWS` as CSV without an h column.
+fn far_input() -> String {
+    let mut input = "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z\n".to_string();
+    for (wi, wo) in FAR_ROWS {
+        input += &format!(
+            "{},{},{},{},{},{}\n",
+            wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]
+        );
+    }
+    input
+}
+
+#[test]
+fn chiang_far_matches_the_library_without_h() {
+    let far = |n| ChiangFarField::new(standard_hair(), &FarFieldRule::gauss_legendre(n).unwrap());
+    for (extra, model) in [(&[][..], far(64)), (&["--nodes", "8"][..], far(8))] {
+        let args: Vec<&str> = ["--model", "chiang-far"]
+            .iter()
+            .chain(extra)
+            .copied()
+            .collect();
+        let o = eval(&args, &far_input());
+        assert!(o.status.success(), "stderr: {}", stderr(&o));
+        let out = stdout(&o);
+        let lines: Vec<&str> = out.lines().collect();
+        assert_eq!(lines[0], "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,f_r,f_g,f_b");
+        assert_eq!(lines.len(), 1 + FAR_ROWS.len(), "{out}");
+        for (line, (wi, wo)) in lines[1..].iter().zip(FAR_ROWS) {
+            let want = model.eval(unit(wi), unit(wo));
+            assert_eq!(appended(line), want, "{extra:?}: {line}");
+            assert!(want.iter().all(|&v| v > 0.0));
+        }
+    }
+}
+
+#[test]
+fn chiang_far_reference_matches_the_library() {
+    let o = eval(&["--model", "chiang-far", "--reference"], &far_input());
+    assert!(o.status.success(), "stderr: {}", stderr(&o));
+    let out = stdout(&o);
+    let fast = ChiangFarField::new(standard_hair(), &FarFieldRule::gauss_legendre(64).unwrap());
+    for (line, (wi, wo)) in out.lines().skip(1).zip(FAR_ROWS) {
+        let want = standard_hair()
+            .far_field_reference(unit(wi), unit(wo), 1e-9)
+            .value;
+        assert_eq!(appended(line), want, "{line}");
+        let fast = fast.eval(unit(wi), unit(wo));
+        assert!(
+            (fast[1] - want[1]).abs() <= 1e-3 * want[1],
+            "{fast:?} {want:?}"
+        );
+    }
+}
+
+#[test]
+fn h_is_optional_only_for_chiang_far() {
+    let with_h = format!("{HEADER}\n0,1,0,0,0.6,0.8,2\n");
+    let o = eval(&["--model", "chiang-far"], &with_h);
+    assert!(
+        o.status.success(),
+        "h is ignored, even out of range: {}",
+        stderr(&o)
+    );
+    let far = ChiangFarField::new(standard_hair(), &FarFieldRule::gauss_legendre(64).unwrap());
+    let want = far.eval(unit([0.0, 1.0, 0.0]), unit([0.0, 0.6, 0.8]));
+    assert_eq!(appended(stdout(&o).lines().nth(1).unwrap_or("")), want);
+
+    let o = eval(&["--model", "chiang"], &far_input());
+    assert_fails_with(&o, &["line 1", "missing column(s) h"]);
+    assert!(stdout(&o).is_empty());
+}
+
+#[test]
+fn far_field_flags_are_checked() {
+    let o = eval(&["--model", "chiang", "--nodes", "8"], &far_input());
+    assert_fails_with(
+        &o,
+        &["--nodes and --reference apply only to --model chiang-far"],
+    );
+    let o = eval(&["--model", "chiang-far", "--nodes", "0"], &far_input());
+    assert_fails_with(&o, &["nodes = 0"]);
+    let o = eval(
+        &["--model", "chiang-far", "--nodes", "8", "--reference"],
+        "",
+    );
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("cannot be used with"), "{}", stderr(&o));
+}
+
+/// The appended `value` of each output row.
+fn values(out: &str) -> Vec<f64> {
+    out.lines()
+        .skip(1)
+        .map(|l| {
+            l.rsplit(',')
+                .next()
+                .unwrap_or("")
+                .parse()
+                .expect("a number")
+        })
+        .collect()
+}
+
+#[test]
+fn wigner3j_known_values_and_selection_rules() {
+    let input = "j1,j2,j3,m1,m2,m3\n1,1,0,0,0,0\n1/2,1/2,1,0.5,-1/2,0\n1,1,5,0,0,0\n\
+                 2,2,2,1,1,1\n";
+    let o = hairmath(&["wigner3j"], input);
+    assert!(o.status.success(), "stderr: {}", stderr(&o));
+    let out = stdout(&o);
+    assert_eq!(out.lines().next(), Some("j1,j2,j3,m1,m2,m3,value"));
+    assert!(out.contains("\n1,1,0,0,0,0,-0.5773502691896257\n"), "{out}");
+    assert!(out.contains("\n1,1,5,0,0,0,0\n"), "{out}");
+    let v = values(&out);
+    // -1/sqrt(3) correctly rounded (computing 1.0 / 3f64.sqrt() rounds twice, one ulp off).
+    assert_eq!(v[0], -0.5773502691896257);
+    assert!((v[0] + 1.0 / 3f64.sqrt()).abs() <= f64::EPSILON);
+    assert!((v[1] - 1.0 / 6f64.sqrt()).abs() < 1e-16, "{v:?}");
+    assert_eq!(&v[2..], [0.0, 0.0]);
+}
+
+#[test]
+fn wigner3j_errors_name_the_line() {
+    let o = hairmath(
+        &["wigner3j"],
+        "j1,j2,j3,m1,m2,m3\n1,1,0,0,0,0\n1,1,x,0,0,0\n",
+    );
+    assert_fails_with(&o, &["line 3", "column j3", "\"x\""]);
+    assert_eq!(values(&stdout(&o)), [-0.5773502691896257]);
+    // An integer j with a half-integer m.
+    let o = hairmath(&["wigner3j"], "j1,j2,j3,m1,m2,m3\n1,1,1,1/2,-1/2,0\n");
+    assert_fails_with(
+        &o,
+        &["line 2", "(1 1 1; 1/2 -1/2 0)", "m1 = 0.5", "integer"],
+    );
+    let o = hairmath(&["wigner3j"], "j1,j2,j3,m1,m2,m3\n1/2,1,1,1/2,0,0\n");
+    assert_fails_with(&o, &["line 2", "j1 + j2 + j3 = 2.5"]);
+    let o = hairmath(&["wigner3j"], "j1,j2,j3,m1,m2,m3\n1,1,1,1.25,0,0\n");
+    assert_fails_with(
+        &o,
+        &["line 2", "column m1", "not an integer or half-integer"],
+    );
+    let o = hairmath(&["wigner3j"], "j1,j2,j3,m1,m2\n");
+    assert_fails_with(&o, &["line 1", "m3"]);
+}
+
+#[test]
+fn gaunt_real_and_complex_match_the_library() {
+    let rows = [
+        (0, 0, 0, 0, 0, 0),
+        (1, 1, 1, -1, 2, 0),
+        (2, -1, 3, 2, 3, -1),
+        (1, 0, 1, 0, 1, 0),
+    ];
+    let mut input = "id,l1,m1,l2,m2,l3,m3\n".to_string();
+    for (k, r) in rows.iter().enumerate() {
+        input += &format!("{k},{},{},{},{},{},{}\n", r.0, r.1, r.2, r.3, r.4, r.5);
+    }
+    for real in [false, true] {
+        let o = hairmath(
+            if real {
+                &["gaunt", "--real"]
+            } else {
+                &["gaunt"]
+            },
+            &input,
+        );
+        assert!(o.status.success(), "stderr: {}", stderr(&o));
+        let gaunt = if real { gaunt_real } else { gaunt_complex };
+        let want: Vec<f64> = rows
+            .iter()
+            .map(|r| gaunt(r.0, r.1, r.2, r.3, r.4, r.5).unwrap())
+            .collect();
+        assert_eq!(values(&stdout(&o)), want, "real: {real}");
+        assert!(
+            stdout(&o).ends_with(",1,0,1,0,1,0,0\n"),
+            "odd l-sum prints 0"
+        );
+    }
+}
+
+#[test]
+fn gaunt_malformed_row_is_reported() {
+    let o = hairmath(
+        &["gaunt"],
+        "l1,m1,l2,m2,l3,m3\n1,0,1,0,0,0\n1/2,0,1,0,0,0\n",
+    );
+    assert_fails_with(
+        &o,
+        &["line 3", "column l1", "\"1/2\"", "non-negative integer"],
+    );
+    assert_eq!(stdout(&o).lines().count(), 2);
+    let o = hairmath(&["gaunt", "--real"], "l1,m1,l2,m2,l3,m3\n1,0,1,0\n");
+    assert_fails_with(&o, &["line 2", "expected 6 fields", "found 4"]);
 }

@@ -3,7 +3,8 @@
 //! ([`Graph::eval_f32`]) must reproduce the `f32` instantiation bit for bit on about 200
 //! deterministic inputs per function, hard cases included (grazing directions, h = +-1,
 //! wi = +-wo, phi = 0 and +-pi, variance 1e-4 and 100, sigma_a 0 and 10, eta = 1.0001, large
-//! cuticle tilts).
+//! cuticle tilts; for spherical harmonics the poles z = +-1, rotations at the identity, in
+//! 90-degree steps and near gimbal lock, zero and one-hot coefficient vectors).
 //!
 //! `coverage_matches_the_source` scans `src/` so that a new public generic function without a
 //! trace test here fails the suite.
@@ -14,7 +15,7 @@ use hairmath::azimuthal::{
     logistic_cdf, refracted_offset, sample_trimmed_logistic, sample_wrapped_gaussian,
     trimmed_logistic, trimmed_mass, wrapped_gaussian,
 };
-use hairmath::bcsdf::{ChiangHair, ChiangParams, CHIANG_CONSTANTS};
+use hairmath::bcsdf::{ChiangFarField, ChiangHair, ChiangParams, FarFieldRule, CHIANG_CONSTANTS};
 use hairmath::fresnel::{
     bravais_eta_parallel, bravais_eta_perpendicular, fresnel_dielectric, fresnel_schlick,
 };
@@ -28,6 +29,9 @@ use hairmath::lobe::{
     HenyeyGreenstein,
 };
 use hairmath::real::{horner, pi, safe_asin, safe_sqrt, trace, wrap_angle, Graph, Real, Traced};
+use hairmath::sh::basis::{eval_sh, eval_sh_into};
+use hairmath::sh::product::{product, triple_product_integral, ProductPlan};
+use hairmath::sh::rotation::{rotate_band1, rotate_band2, rotate_bands012, rotate_zonal_into};
 use std::collections::BTreeSet;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
@@ -307,14 +311,199 @@ fn of_angles<R: Real>(a: FibreAngles<R>) -> Vec<R> {
         a.phi,
     ]
 }
-/// The model from the first CHIANG_CONSTANTS + 3 arguments: the constants, then sigma_a.
+/// The number of material arguments (the constants, then sigma_a); the direction arguments
+/// start here.
+const MAT: usize = CHIANG_CONSTANTS + 3;
+/// The model from the first [`MAT`] arguments: the constants, then sigma_a.
 fn chiang<R: Real>(x: &[R]) -> ChiangHair<R> {
     const K: usize = CHIANG_CONSTANTS;
     ChiangHair::from_constants(arr(&x[..K]), arr(&x[K..K + 3]))
 }
 /// Material, wi, wo, h: the arguments of `ChiangHair::eval` and `pdf`.
 fn chiang_rows() -> Vec<Vec<f32>> {
-    rows(|g| [g.hair(), g.pair(), vec![g.pick(&SIN)]].concat())
+    let rows = rows(|g| [g.hair(), g.pair(), vec![g.pick(&SIN)]].concat());
+    assert!(rows.iter().all(|r| r.len() == MAT + 7));
+    rows
+}
+
+/// Listed rows first (the hard cases), then rows built by `row` up to `N`, rounded to `f32`.
+fn listed_then(first: Vec<Vec<f64>>, row: impl FnMut(&mut Gen) -> Vec<f64>) -> Vec<Vec<f32>> {
+    let random = rows(row);
+    let first: Vec<Vec<f32>> = first
+        .iter()
+        .map(|r| r.iter().map(|&v| v as f32).collect())
+        .collect();
+    let n = N.max(first.len());
+    first.into_iter().chain(random).take(n).collect()
+}
+
+/// Unit directions for spherical harmonics with the hard cases first: the poles (where x and y
+/// vanish and every m != 0 term must be exactly zero), the axes, a direction 1e-4 rad from the
+/// pole.
+const SH_DIRECTIONS: &[[f64; 3]] = &[
+    [0.0, 0.0, 1.0],
+    [0.0, 0.0, -1.0],
+    [1.0, 0.0, 0.0],
+    [-1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [0.0, -1.0, 0.0],
+    [1e-4, 0.0, 0.999_999_995],
+    [0.0, -1e-4, -0.999_999_995],
+    [0.6, 0.0, 0.8],
+    [0.0, 0.6, -0.8],
+];
+
+/// Rotation matrices (row-major) with the hard cases first: the identity, every 90-degree step
+/// about each axis and compositions of two (signed permutations, the exact-zero patterns),
+/// Z-Y-Z Euler angles at and next to gimbal lock (beta = 0, +-1e-4, pi - 1e-4, pi), rotations
+/// 1e-3 and 1e-6 rad from the identity.
+fn hard_rotations() -> Vec<[f64; 9]> {
+    let mut out = vec![mat_to_rows(IDENTITY)];
+    let quarter = |axis: usize, k: usize| {
+        let (c, s) = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)][k % 4];
+        axis_rotation(axis, c, s)
+    };
+    for axis in 0..3 {
+        for k in 1..4 {
+            out.push(mat_to_rows(quarter(axis, k)));
+        }
+    }
+    for (a, b) in [(0, 1), (1, 2), (2, 0)] {
+        out.push(mat_to_rows(mat_mul(quarter(a, 1), quarter(b, 1))));
+        out.push(mat_to_rows(mat_mul(quarter(a, 3), quarter(b, 2))));
+    }
+    for beta in [0.0, 1e-4, -1e-4, PI - 1e-4, PI] {
+        for (alpha, gamma) in [(0.3, -0.3), (1.1, 2.0), (-2.5, 0.7)] {
+            out.push(mat_to_rows(euler_zyz(alpha, beta, gamma)));
+        }
+    }
+    for angle in [1e-3, 1e-6] {
+        for axis in 0..3 {
+            out.push(mat_to_rows(axis_rotation(
+                axis,
+                f64::cos(angle),
+                f64::sin(angle),
+            )));
+        }
+    }
+    out
+}
+
+type Mat = [[f64; 3]; 3];
+const IDENTITY: Mat = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+fn mat_mul(a: Mat, b: Mat) -> Mat {
+    core::array::from_fn(|i| core::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+}
+fn mat_to_rows(m: Mat) -> [f64; 9] {
+    core::array::from_fn(|i| m[i / 3][i % 3])
+}
+/// The rotation about coordinate axis `axis` by the angle with cosine `c` and sine `s`.
+fn axis_rotation(axis: usize, c: f64, s: f64) -> Mat {
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let mut m = IDENTITY;
+    (m[i][i], m[i][j], m[j][i], m[j][j]) = (c, -s, s, c);
+    m
+}
+fn euler_zyz(alpha: f64, beta: f64, gamma: f64) -> Mat {
+    let rz = |a: f64| axis_rotation(2, a.cos(), a.sin());
+    mat_mul(
+        mat_mul(rz(alpha), axis_rotation(1, beta.cos(), beta.sin())),
+        rz(gamma),
+    )
+}
+
+impl Gen {
+    /// A unit direction for SH evaluation: one of `SH_DIRECTIONS` with probability 1/4, else
+    /// uniform on the sphere.
+    fn sphere(&mut self) -> [f64; 3] {
+        if self.uniform() < 0.25 {
+            return SH_DIRECTIONS[self.below(SH_DIRECTIONS.len())];
+        }
+        let z = 2.0 * self.uniform() - 1.0;
+        let phi = self.pick(&ANGLE);
+        let s = (1.0 - z * z).sqrt();
+        [s * phi.cos(), s * phi.sin(), z]
+    }
+    /// A uniformly random rotation (Shoemake's unit quaternion), row-major.
+    fn rotation(&mut self) -> [f64; 9] {
+        let (u1, u2, u3) = (
+            self.uniform(),
+            2.0 * PI * self.uniform(),
+            2.0 * PI * self.uniform(),
+        );
+        let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
+        let [w, x, y, z] = [a * u2.sin(), a * u2.cos(), b * u3.sin(), b * u3.cos()];
+        mat_to_rows([
+            [
+                1.0 - 2.0 * (y * y + z * z),
+                2.0 * (x * y - w * z),
+                2.0 * (x * z + w * y),
+            ],
+            [
+                2.0 * (x * y + w * z),
+                1.0 - 2.0 * (x * x + z * z),
+                2.0 * (y * z - w * x),
+            ],
+            [
+                2.0 * (x * z - w * y),
+                2.0 * (y * z + w * x),
+                1.0 - 2.0 * (x * x + y * y),
+            ],
+        ])
+    }
+    /// `n` SH coefficients: all zero, one-hot, all one, or uniform in [-1, 1].
+    fn coefficients(&mut self, n: usize) -> Vec<f64> {
+        match self.below(8) {
+            0 => vec![0.0; n],
+            1 => {
+                let k = self.below(n);
+                (0..n).map(|i| f64::from(u8::from(i == k))).collect()
+            }
+            2 => vec![1.0; n],
+            _ => (0..n).map(|_| 2.0 * self.uniform() - 1.0).collect(),
+        }
+    }
+    /// Two coefficient vectors of `n` each: independent, equal, or opposite.
+    fn coefficient_pair(&mut self, n: usize) -> Vec<f64> {
+        let a = self.coefficients(n);
+        let b = match self.below(4) {
+            0 => a.clone(),
+            1 => a.iter().map(|v| -v).collect(),
+            _ => self.coefficients(n),
+        };
+        [a, b].concat()
+    }
+}
+
+/// A rotation then `n` coefficients: the hard rotations (with random coefficients, and with
+/// zero coefficients for the first), then random rotations (one in four a hard one).
+fn rotation_rows(n: usize) -> Vec<Vec<f32>> {
+    let hard = hard_rotations();
+    let mut g = Gen(0x0707a7e);
+    let mut first: Vec<Vec<f64>> = hard
+        .iter()
+        .map(|r| [&r[..], &g.coefficients(n)].concat())
+        .collect();
+    first.push([&hard[0][..], &vec![0.0; n]].concat());
+    first.push([&hard[1][..], &vec![0.0; n]].concat());
+    listed_then(first, |g| {
+        let r = if g.below(4) == 0 {
+            hard[g.below(hard.len())]
+        } else {
+            g.rotation()
+        };
+        [&r[..], &g.coefficients(n)].concat()
+    })
+}
+/// The row-major 3x3 matrix of the first nine arguments.
+fn mat3<R: Real>(x: &[R]) -> [[R; 3]; 3] {
+    [arr(&x[0..3]), arr(&x[3..6]), arr(&x[6..9])]
+}
+/// Directions with every entry of `SH_DIRECTIONS` first.
+fn sh_direction_rows() -> Vec<Vec<f32>> {
+    let first = SH_DIRECTIONS.iter().map(|d| d.to_vec()).collect();
+    listed_then(first, |g| g.sphere().to_vec())
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -501,26 +690,27 @@ traced_tests! {
         }
     }
     chiang_constants [
-        "ChiangHair::from_constants", "ChiangHair::constants", "ChiangHair::sigma_a"
+        "ChiangHair::from_constants", "ChiangHair::constants", "ChiangHair::sigma_a",
+        "ChiangHair::eta"
     ] {
         case!("ChiangHair::constants", rows(|g| g.hair()), |x| {
             let hair = chiang(x);
-            [&hair.constants()[..], &hair.sigma_a()[..]].concat()
+            [&hair.constants()[..], &hair.sigma_a()[..], &[hair.eta()]].concat()
         });
     }
-    chiang_eval ["ChiangHair::eval"] {
+    chiang_eval ["ChiangHair::eval", "LobeTerms::value"] {
         case!("ChiangHair::eval", chiang_rows(), |x| {
-            chiang(x).eval(v3(&x[15..]), v3(&x[18..]), x[21]).to_vec()
+            chiang(x).eval(v3(&x[MAT..]), v3(&x[MAT + 3..]), x[MAT + 6]).to_vec()
         });
     }
-    chiang_eval_lobes ["ChiangHair::eval_lobes"] {
+    chiang_eval_lobes ["ChiangHair::eval_lobes", "LobeTerms::per_lobe"] {
         case!("ChiangHair::eval_lobes", chiang_rows(), |x| {
-            chiang(x).eval_lobes(v3(&x[15..]), v3(&x[18..]), x[21]).concat()
+            chiang(x).eval_lobes(v3(&x[MAT..]), v3(&x[MAT + 3..]), x[MAT + 6]).concat()
         });
     }
-    chiang_pdf ["ChiangHair::pdf"] {
+    chiang_pdf ["ChiangHair::pdf", "LobeTerms::pdf"] {
         case!("ChiangHair::pdf", chiang_rows(), |x| {
-            vec![chiang(x).pdf(v3(&x[15..]), v3(&x[18..]), x[21])]
+            vec![chiang(x).pdf(v3(&x[MAT..]), v3(&x[MAT + 3..]), x[MAT + 6])]
         });
     }
     chiang_sample ["ChiangHair::sample"] {
@@ -530,9 +720,140 @@ traced_tests! {
             [&g.hair()[..], &g.dir(), &rest].concat()
         });
         case!("ChiangHair::sample", inputs, |x| {
-            let s = chiang(x).sample(v3(&x[15..]), x[18], [x[19], x[20]], x[21]);
+            let u = [x[MAT + 4], x[MAT + 5]];
+            let s = chiang(x).sample(v3(&x[MAT..]), x[MAT + 3], u, x[MAT + 6]);
             [of_v3(s.wi), s.value.to_vec(), vec![s.pdf]].concat()
         });
+    }
+
+    far_field [
+        "ChiangFarField::new", "ChiangFarField::near_field", "ChiangFarField::azimuthal",
+        "ChiangFarField::eval", "ChiangFarField::eval_lobes", "ChiangFarField::pdf"
+    ] {
+        // The rule's nodes are folded into the shader as constants: one trace per node count
+        // (1 node and a small rule keep the WGSL short; the loop is the same for more).
+        for nodes in [1, 4] {
+            let rule = FarFieldRule::gauss_legendre(nodes).unwrap();
+            case!(format!("ChiangFarField::eval({nodes} nodes)"), chiang_rows(), |x| {
+                let ff = ChiangFarField::new(chiang(x), &rule);
+                let (wi, wo) = (v3(&x[MAT..]), v3(&x[MAT + 3..]));
+                let a = local_fibre_angles(wi, wo);
+                let (an, wn) = ff.azimuthal(a.sin_theta_o, a.cos_theta_o, a.phi);
+                [
+                    ff.eval(wi, wo).to_vec(),
+                    ff.eval_lobes(wi, wo).concat(),
+                    vec![ff.pdf(wi, wo), ff.near_field().eta()],
+                    an.concat(),
+                    wn.to_vec(),
+                ]
+                .concat()
+            });
+        }
+    }
+    far_field_sample ["ChiangFarField::sample"] {
+        // Material, wo, uh, u[0], u[1], uc.
+        for nodes in [1, 4] {
+            let rule = FarFieldRule::gauss_legendre(nodes).unwrap();
+            let inputs = rows(|g| {
+                let rest = [g.pick(&U), g.pick(&U), g.pick(&U), g.pick(&U)];
+                [&g.hair()[..], &g.dir(), &rest].concat()
+            });
+            case!(format!("ChiangFarField::sample({nodes} nodes)"), inputs, |x| {
+                let ff = ChiangFarField::new(chiang(x), &rule);
+                let u = [x[MAT + 4], x[MAT + 5]];
+                let s = ff.sample(v3(&x[MAT..]), u, x[MAT + 6], x[MAT + 3]);
+                [of_v3(s.wi), s.value.to_vec(), vec![s.pdf]].concat()
+            });
+        }
+    }
+
+    sh_eval_sh ["eval_sh"] {
+        // The band count is the const parameter N = bands^2: one trace per band count.
+        case!("eval_sh(bands = 1)", sh_direction_rows(), |x| {
+            eval_sh::<_, 1>(x[0], x[1], x[2]).to_vec()
+        });
+        case!("eval_sh(bands = 3)", sh_direction_rows(), |x| {
+            eval_sh::<_, 9>(x[0], x[1], x[2]).to_vec()
+        });
+        case!("eval_sh(bands = 6)", sh_direction_rows(), |x| {
+            eval_sh::<_, 36>(x[0], x[1], x[2]).to_vec()
+        });
+        case!("eval_sh(bands = 10)", sh_direction_rows(), |x| {
+            eval_sh::<_, 100>(x[0], x[1], x[2]).to_vec()
+        });
+    }
+    sh_eval_sh_into ["eval_sh_into"] {
+        // `out` two entries longer than needed: the tail must be left as it was (the input x).
+        for bands in [1, 3, 6, 10] {
+            case!(format!("eval_sh_into(bands = {bands})"), sh_direction_rows(), |x| {
+                let mut out = vec![x[0]; bands * bands + 2];
+                eval_sh_into(bands, x[0], x[1], x[2], &mut out).unwrap();
+                out
+            });
+        }
+    }
+    sh_rotate_zonal_into ["rotate_zonal_into"] {
+        // Zonal coefficients, then the direction +z is rotated to.
+        for bands in [1, 3, 6] {
+            let first = SH_DIRECTIONS.iter().map(|d| [vec![1.0; bands], d.to_vec()].concat());
+            let inputs = listed_then(first.collect(), |g| {
+                [g.coefficients(bands), g.sphere().to_vec()].concat()
+            });
+            case!(format!("rotate_zonal_into(bands = {bands})"), inputs, |x| {
+                let mut out = vec![x[0]; bands * bands];
+                rotate_zonal_into(&x[..bands], x[bands], x[bands + 1], x[bands + 2], &mut out)
+                    .unwrap();
+                out
+            });
+        }
+    }
+    sh_rotate_band1 ["rotate_band1"] {
+        case!("rotate_band1", rotation_rows(3), |x| {
+            rotate_band1(&mat3(x), arr(&x[9..])).to_vec()
+        });
+    }
+    sh_rotate_band2 ["rotate_band2"] {
+        case!("rotate_band2", rotation_rows(5), |x| {
+            rotate_band2(&mat3(x), arr(&x[9..])).to_vec()
+        });
+    }
+    sh_rotate_bands012 ["rotate_bands012"] {
+        case!("rotate_bands012", rotation_rows(9), |x| {
+            rotate_bands012(&mat3(x), arr(&x[9..])).to_vec()
+        });
+    }
+    sh_product_plan ["ProductPlan::apply", "ProductPlan::apply_into", "ProductPlan::triple"] {
+        // The plan is built outside the trace (it is f64 set-up); its coefficients are folded
+        // into the shader as constants.
+        for n_bands in [2, 4] {
+            let (plan, n) = (ProductPlan::new(n_bands).unwrap(), n_bands * n_bands);
+            let inputs = rows(|g| g.coefficient_pair(n));
+            case!(format!("ProductPlan::apply(n_bands = {n_bands})"), inputs.clone(), |x| {
+                plan.apply(&x[..n], &x[n..]).unwrap()
+            });
+            case!(format!("ProductPlan::apply_into(n_bands = {n_bands})"), inputs, |x| {
+                let mut out = vec![x[0]; n];
+                plan.apply_into(&x[..n], &x[n..], &mut out).unwrap();
+                out
+            });
+            let inputs = rows(|g| [g.coefficient_pair(n), g.coefficients(n)].concat());
+            case!(format!("ProductPlan::triple(n_bands = {n_bands})"), inputs, |x| {
+                vec![plan.triple(&x[..n], &x[n..2 * n], &x[2 * n..]).unwrap()]
+            });
+        }
+    }
+    sh_product ["product", "triple_product_integral"] {
+        for n_bands in [2, 4] {
+            let n = n_bands * n_bands;
+            let inputs = rows(|g| g.coefficient_pair(n));
+            case!(format!("product(n_bands = {n_bands})"), inputs, |x| {
+                product(n_bands, &x[..n], &x[n..]).unwrap()
+            });
+            let inputs = rows(|g| [g.coefficient_pair(n), g.coefficients(n)].concat());
+            case!(format!("triple_product_integral(n_bands = {n_bands})"), inputs, |x| {
+                vec![triple_product_integral(n_bands, &x[..n], &x[n..2 * n], &x[2 * n..]).unwrap()]
+            });
+        }
     }
 }
 

@@ -1,29 +1,81 @@
-//! Batch evaluation of [`ChiangHair`] over slices, eight samples per instruction.
+//! Batch evaluation of [`ChiangHair`] over slices, eight or sixteen samples per instruction.
 //!
 //! There is no separate SIMD implementation of the model: [`eval_batch`] and [`pdf_batch`] call
 //! the very same generic [`ChiangHair::eval`] and [`ChiangHair::pdf`] that the scalar `f64` and
-//! `f32` paths use, instantiated with `R = `[`wide::f32x8`] (see [`crate::real::simd`]). The
-//! only code here moves data: it transposes eight array-of-structures samples into
-//! structure-of-arrays lanes, evaluates, and transposes back.
+//! `f32` paths use, instantiated with a lane type `L` ([`wide::f32x8`] or [`wide::f32x16`], see
+//! [`crate::real::simd`]). The only code here moves data: it transposes `L::LANES`
+//! array-of-structures samples into structure-of-arrays lanes, evaluates, and transposes back.
+//!
+//! **Which width.** [`batch_model`] builds the eight-lane model (compatible with every x86-64
+//! target); [`batch_model_for`] builds the model for any [`BatchLanes`] type, and
+//! [`BatchReal`] names the faster width for the compilation target: [`wide::f32x16`] (one
+//! AVX-512 register) when the crate is compiled with `avx512f`, e.g. under
+//! `RUSTFLAGS="-C target-cpu=native"` on an AVX-512 machine, [`wide::f32x8`] otherwise.
 //!
 //! **Accuracy.** `wide`'s `exp`, `ln` and `atan2` are vectorised polynomial approximations, so
 //! the lanes differ from the scalar `f32` instantiation (which calls libm) by a few ulp per
-//! call. Over 100k random inputs plus the hard cases (module tests), the batch path is within
-//! 8.5e-6 relative of scalar `f32` and within 7.1e-5 relative of the `f64` reference, the same
-//! worst case as scalar `f32` itself (it comes from `1 - h^2` in single precision at
-//! |h| -> 1, not from the SIMD approximations); the median is 3.5e-7.
+//! call. The module tests measure both widths against scalar `f32` and the `f64` reference over
+//! 100k random inputs plus the hard cases; the worst case against `f64` comes from `1 - h^2` in
+//! single precision at |h| -> 1 (scalar `f32` has it too), not from the SIMD approximations.
 //!
-//! **Tail.** A length that is not a multiple of 8 is handled by padding the last chunk with the
-//! harmless sample `wi = wo = (0, 1, 0)`, `h = 0` and discarding the padded lanes, so every
-//! input goes through the same vector code.
+//! **Tail.** A length that is not a multiple of the lane count is handled by padding the last
+//! chunk with the harmless sample `wi = wo = (0, 1, 0)`, `h = 0` and discarding the padded
+//! lanes, so every input goes through the same vector code.
 
-use wide::f32x8;
+use wide::{f32x16, f32x8};
 
 use super::{ChiangHair, ChiangParams};
 use crate::geometry::V3;
+use crate::real::Real;
+
+pub use crate::real::simd::BatchReal;
 
 /// Lanes per [`f32x8`] value.
 pub const LANES: usize = 8;
+/// The most lanes of any [`BatchLanes`] type.
+const MAX_LANES: usize = 16;
+
+/// A SIMD lane type batch evaluation runs on: [`f32x8`] or [`f32x16`].
+pub trait BatchLanes: Real + sealed::Sealed {
+    /// Samples per value.
+    const LANES: usize;
+    /// The value whose lane `k` is `f(k)`.
+    fn from_fn(f: impl FnMut(usize) -> f32) -> Self;
+    /// Writes the first `out.len()` (at most `LANES`) lanes to `out`.
+    fn store(self, out: &mut [f32]);
+    /// Lane `k`.
+    fn lane(self, k: usize) -> f32;
+}
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for wide::f32x8 {}
+    impl Sealed for wide::f32x16 {}
+}
+
+macro_rules! impl_batch_lanes {
+    ($t:ident, $n:expr) => {
+        impl BatchLanes for $t {
+            const LANES: usize = $n;
+            #[inline(always)]
+            fn from_fn(f: impl FnMut(usize) -> f32) -> Self {
+                $t::from(core::array::from_fn::<f32, $n, _>(f))
+            }
+            #[inline(always)]
+            fn store(self, out: &mut [f32]) {
+                let a = self.to_array();
+                out.copy_from_slice(&a[..out.len()]);
+            }
+            #[inline(always)]
+            fn lane(self, k: usize) -> f32 {
+                self.to_array()[k]
+            }
+        }
+    };
+}
+
+impl_batch_lanes!(f32x8, 8);
+impl_batch_lanes!(f32x16, 16);
 
 /// The slices handed to a batch function do not all have the same length.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
@@ -45,6 +97,12 @@ pub fn batch_model(params: &ChiangParams) -> ChiangHair<f32x8> {
     ChiangHair::<f32x8>::new(params)
 }
 
+/// The model for lane type `L`, e.g. `batch_model_for::<BatchReal>(params)` for the fastest
+/// width of the compilation target. Equivalent to `ChiangHair::<L>::new(params)`.
+pub fn batch_model_for<L: BatchLanes>(params: &ChiangParams) -> ChiangHair<L> {
+    ChiangHair::<L>::new(params)
+}
+
 /// The padding sample: wi = wo = (0, 1, 0) (perpendicular to the fibre), h = 0.
 const PAD_DIR: [f32; 3] = [0.0, 1.0, 0.0];
 const PAD_H: f32 = 0.0;
@@ -57,68 +115,61 @@ fn check(wi: usize, wo: usize, h: usize, out: usize) -> Result<(), BatchLengthEr
     }
 }
 
-/// Eight directions (array of structures) as one vector of lanes.
+/// `L::LANES` directions (array of structures; exactly that many) as one vector of lanes.
 #[inline(always)]
-fn load_dirs(d: &[[f32; 3]; LANES]) -> V3<f32x8> {
+fn load_dirs<L: BatchLanes>(d: &[[f32; 3]]) -> V3<L> {
     V3::new(
-        f32x8::from(d.map(|v| v[0])),
-        f32x8::from(d.map(|v| v[1])),
-        f32x8::from(d.map(|v| v[2])),
+        L::from_fn(|k| d[k][0]),
+        L::from_fn(|k| d[k][1]),
+        L::from_fn(|k| d[k][2]),
     )
 }
 
-/// Runs `f` on every chunk of eight samples, padding the last chunk. `f` receives the lanes and
-/// the number of valid lanes' output slots to fill.
+/// Runs `f` on every chunk of `L::LANES` samples, padding the last chunk. `f` receives the
+/// lanes and the valid lanes' output slots to fill.
 #[inline(always)]
-fn for_each_chunk<T: Copy>(
+fn for_each_chunk<L: BatchLanes, T: Copy>(
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],
     h: &[f32],
     out: &mut [T],
-    mut f: impl FnMut(V3<f32x8>, V3<f32x8>, f32x8, &mut [T]),
+    mut f: impl FnMut(V3<L>, V3<L>, L, &mut [T]),
 ) {
-    let full = wi.len() / LANES * LANES;
+    let n = L::LANES;
+    let full = wi.len() / n * n;
     let chunks = wi[..full]
-        .chunks_exact(LANES)
-        .zip(wo[..full].chunks_exact(LANES))
-        .zip(h[..full].chunks_exact(LANES))
-        .zip(out[..full].chunks_exact_mut(LANES));
+        .chunks_exact(n)
+        .zip(wo[..full].chunks_exact(n))
+        .zip(h[..full].chunks_exact(n))
+        .zip(out[..full].chunks_exact_mut(n));
     for (((wi, wo), h), out) in chunks {
-        // The conversions cannot fail: chunks_exact yields exactly LANES elements.
-        let wi: &[[f32; 3]; LANES] = wi.try_into().expect("chunk of LANES");
-        let wo: &[[f32; 3]; LANES] = wo.try_into().expect("chunk of LANES");
-        let h: [f32; LANES] = h.try_into().expect("chunk of LANES");
-        f(load_dirs(wi), load_dirs(wo), f32x8::from(h), out);
+        f(load_dirs(wi), load_dirs(wo), L::from_fn(|k| h[k]), out);
     }
     let rest = wi.len() - full;
     if rest > 0 {
-        let mut pwi = [PAD_DIR; LANES];
-        let mut pwo = [PAD_DIR; LANES];
-        let mut ph = [PAD_H; LANES];
-        pwi[..rest].copy_from_slice(&wi[full..]);
-        pwo[..rest].copy_from_slice(&wo[full..]);
-        ph[..rest].copy_from_slice(&h[full..]);
-        f(
-            load_dirs(&pwi),
-            load_dirs(&pwo),
-            f32x8::from(ph),
-            &mut out[full..],
-        );
+        let pad = |d: &[[f32; 3]]| -> Vec<[f32; 3]> {
+            let mut v = vec![PAD_DIR; n];
+            v[..rest].copy_from_slice(&d[full..]);
+            v
+        };
+        let (pwi, pwo) = (pad(wi), pad(wo));
+        let ph = L::from_fn(|k| if k < rest { h[full + k] } else { PAD_H });
+        f(load_dirs(&pwi), load_dirs(&pwo), ph, &mut out[full..]);
     }
 }
 
-/// `S(wi[k], wo[k], h[k])` per channel into `out[k]`, eight samples at a time.
+/// `S(wi[k], wo[k], h[k])` per channel into `out[k]`, `L::LANES` samples at a time.
 ///
 /// This is [`ChiangHair::eval`] itself, the same generic code as the scalar `f64`/`f32` paths,
-/// instantiated with [`f32x8`]; results agree with `ChiangHair::<f32>::eval` up to the
+/// instantiated with the lane type `L`; results agree with `ChiangHair::<f32>::eval` up to the
 /// accuracy of `wide`'s transcendental approximations (see the module documentation).
 /// Conventions (local frame, tangent +X, unit directions, `h` in [-1, 1] clamped) are those of
 /// [`ChiangHair::eval`].
 ///
 /// # Errors
 /// [`BatchLengthError`] if `wi`, `wo`, `h` and `out` differ in length; `out` is then untouched.
-pub fn eval_batch(
-    hair: &ChiangHair<f32x8>,
+pub fn eval_batch<L: BatchLanes>(
+    hair: &ChiangHair<L>,
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],
     h: &[f32],
@@ -126,21 +177,24 @@ pub fn eval_batch(
 ) -> Result<(), BatchLengthError> {
     check(wi.len(), wo.len(), h.len(), out.len())?;
     for_each_chunk(wi, wo, h, out, |wi, wo, h, out| {
-        let [r, g, b] = hair.eval(wi, wo, h).map(|c| c.to_array());
-        for (k, slot) in out.iter_mut().enumerate().take(LANES) {
-            *slot = [r[k], g[k], b[k]];
+        let mut rgb = [[0.0_f32; MAX_LANES]; 3];
+        for (lanes, value) in rgb.iter_mut().zip(hair.eval(wi, wo, h)) {
+            value.store(&mut lanes[..L::LANES]);
+        }
+        for (k, slot) in out.iter_mut().enumerate().take(L::LANES) {
+            *slot = [rgb[0][k], rgb[1][k], rgb[2][k]];
         }
     });
     Ok(())
 }
 
-/// [`ChiangHair::pdf`] of `wi[k]` given `wo[k]`, `h[k]` into `out[k]`, eight samples at a time
-/// (the same generic code as the scalar path, instantiated with [`f32x8`]).
+/// [`ChiangHair::pdf`] of `wi[k]` given `wo[k]`, `h[k]` into `out[k]`, `L::LANES` samples at a
+/// time (the same generic code as the scalar path, instantiated with `L`).
 ///
 /// # Errors
 /// [`BatchLengthError`] if `wi`, `wo`, `h` and `out` differ in length; `out` is then untouched.
-pub fn pdf_batch(
-    hair: &ChiangHair<f32x8>,
+pub fn pdf_batch<L: BatchLanes>(
+    hair: &ChiangHair<L>,
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],
     h: &[f32],
@@ -148,9 +202,8 @@ pub fn pdf_batch(
 ) -> Result<(), BatchLengthError> {
     check(wi.len(), wo.len(), h.len(), out.len())?;
     for_each_chunk(wi, wo, h, out, |wi, wo, h, out| {
-        let p = hair.pdf(wi, wo, h).to_array();
-        let n = out.len().min(LANES);
-        out[..n].copy_from_slice(&p[..n]);
+        let n = out.len().min(L::LANES);
+        hair.pdf(wi, wo, h).store(&mut out[..n]);
     });
     Ok(())
 }
@@ -230,7 +283,7 @@ mod tests {
             wo.push(wo[k]);
             h.push(h[k]);
         }
-        if wi.len() % LANES == 0 {
+        if wi.len() % MAX_LANES == 0 {
             wi.push([0.0, 0.0, 1.0]);
             wo.push([0.0, 0.0, 1.0]);
             h.push(0.5);
@@ -274,26 +327,34 @@ mod tests {
     }
 
     /// Measured (100_000 random samples plus 3 x 144 hard cases plus 1_500 grazing / wi = wo /
-    /// wi = -wo variants, 101_932 in all, seed 0x5eed, wide 0.7.33, x86_64 default target),
-    /// error = |x - ref| / (|ref| + 1e-6), max over samples and RGB:
-    /// - batch vs f64: 7.11e-5 (median 3.5e-7, 99.9% 6.1e-6); scalar f32 vs f64: 7.11e-5, at the
-    ///   same sample (h = 0.99982: `1 - h^2` loses digits in single precision);
-    /// - batch vs scalar f32: 8.5e-6 (the `wide` approximations);
-    /// - pdf batch vs f64: 7.3e-5.
+    /// wi = -wo variants, 101_932 in all, seed 0x5eed, wide 1.7.1, x86_64 default target; the
+    /// same for 8 and 16 lanes), error = |x - ref| / (|ref| + 1e-6), max over samples and RGB:
+    /// - batch vs f64: 6.58e-5; scalar f32 vs f64: 6.58e-5, at the same sample (`1 - h^2`
+    ///   loses digits in single precision at |h| -> 1);
+    /// - batch vs scalar f32: 8.6e-6 (the `wide` approximations);
+    /// - pdf batch vs f64: 6.9e-5.
     ///
     /// Bounds asserted: 1e-4 against f64, 1.2e-5 against scalar f32.
     #[test]
     fn batch_matches_scalar_and_reference() {
+        batch_matches_scalar_and_reference_for(batch_model(&params()));
+    }
+
+    #[test]
+    fn sixteen_lanes_match_scalar_and_reference() {
+        batch_matches_scalar_and_reference_for(batch_model_for::<f32x16>(&params()));
+    }
+
+    fn batch_matches_scalar_and_reference_for<L: BatchLanes>(hair8: ChiangHair<L>) {
         const FLOOR: f64 = 1e-6;
         const BOUND_VS_F64: f64 = 1e-4;
         const BOUND_VS_F32: f64 = 1.2e-5;
         let p = params();
-        let hair8 = batch_model(&p);
         let hair32 = ChiangHair::<f32>::new(&p);
         let hair64 = ChiangHair::<f64>::new(&p);
         let (wi, wo, h) = inputs(100_000);
         let n = wi.len();
-        assert_ne!(n % LANES, 0, "the tail must be exercised");
+        assert_ne!(n % L::LANES, 0, "the tail must be exercised");
         let mut batch = vec![[f32::NAN; 3]; n];
         eval_batch(&hair8, &wi, &wo, &h, &mut batch).unwrap();
         let mut scalar = Vec::with_capacity(n);
@@ -316,8 +377,9 @@ mod tests {
         let (e_scalar, _) = max_rel(&scalar, &reference, FLOOR);
         let (e_vs_f32, k_vs) = max_rel(&batch, &scalar64, FLOOR);
         eprintln!(
-            "n {n}: batch vs f64 {e_batch:.3e} (sample {k_batch}), f32 vs f64 {e_scalar:.3e}, \
-             batch vs f32 {e_vs_f32:.3e} (sample {k_vs})"
+            "{} lanes, n {n}: batch vs f64 {e_batch:.3e} (sample {k_batch}), f32 vs f64 {e_scalar:.3e}, \
+             batch vs f32 {e_vs_f32:.3e} (sample {k_vs})",
+            L::LANES
         );
         assert!(
             e_batch < BOUND_VS_F64,
@@ -341,15 +403,20 @@ mod tests {
         assert!(worst < BOUND_VS_F64, "pdf batch vs f64: {worst:e}");
     }
 
-    /// Every tail length 1..=17 gives the same values as evaluating the samples inside a full
+    /// Every tail length 1..=33 gives the same values as evaluating the samples inside a full
     /// chunk, i.e. the padding never leaks into valid lanes.
     #[test]
     fn tails_of_every_length_agree_with_full_chunks() {
-        let hair = batch_model(&params());
-        let (wi, wo, h) = inputs(24);
-        let mut full = vec![[0.0; 3]; 24];
-        eval_batch(&hair, &wi[..24], &wo[..24], &h[..24], &mut full).unwrap();
-        for len in 1..=17 {
+        tails_agree::<f32x8>();
+        tails_agree::<f32x16>();
+    }
+
+    fn tails_agree<L: BatchLanes>() {
+        let hair = batch_model_for::<L>(&params());
+        let (wi, wo, h) = inputs(48);
+        let mut full = vec![[0.0; 3]; 48];
+        eval_batch(&hair, &wi[..48], &wo[..48], &h[..48], &mut full).unwrap();
+        for len in 1..=33 {
             let mut part = vec![[f32::NAN; 3]; len];
             eval_batch(&hair, &wi[..len], &wo[..len], &h[..len], &mut part).unwrap();
             assert_eq!(part[..], full[..len], "length {len}");

@@ -21,16 +21,14 @@
 //! (gamma_o = asin h), and the relative azimuth of the lobes is phi_i - phi_o, the negative of
 //! [`crate::geometry::FibreAngles::phi`].
 
-use crate::absorption::{segment_transmittance, PathLength, Rgb};
+use crate::absorption::Rgb;
 use crate::azimuthal::{
-    attenuations_from_fresnel, exit_angle, logistic, refracted_offset, sample_trimmed_logistic,
-    trimmed_mass, LOBES,
+    attenuations_from_fresnel, exit_angle, sample_trimmed_logistic, trimmed_mass, LOBES,
 };
 use crate::error::ParamError;
-use crate::fresnel::fresnel_dielectric;
 use crate::geometry::{azimuth_between, local_direction, local_sin_cos_theta, V3};
 use crate::lobe::{deon_lobe_sample_cos_theta, DeonLobe};
-use crate::real::{pi, safe_asin, safe_sqrt, wrap_angle, Real};
+use crate::real::{pi, safe_sqrt, wrap_angle, Real};
 
 /// Validated parameters of the Chiang 2016 model.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -146,6 +144,11 @@ pub struct ChiangHair<R> {
     cos_2k_alpha: [R; 3],
     eta: R,
     sigma_a: [R; 3],
+    /// Derived in [`ChiangHair::from_constants`] (not part of [`ChiangHair::constants`]): 1 / eta,
+    /// 1 / s and 1 / (s mass), so that evaluation multiplies instead of dividing.
+    inv_eta: R,
+    inv_s: R,
+    logistic_norm: R,
 }
 
 /// One importance sample of [`ChiangHair::sample`].
@@ -241,7 +244,12 @@ impl<R: Real> ChiangHair<R> {
     /// The model from constants in the order of [`ChiangHair::constants`] and the absorption
     /// per unit radius. Shader code receives both as uniforms this way.
     pub fn from_constants(c: [R; CHIANG_CONSTANTS], sigma_a: [R; 3]) -> Self {
+        let one = R::c(1.0);
+        let inv_s = one / c[12];
         ChiangHair {
+            inv_eta: one / c[20],
+            inv_s,
+            logistic_norm: inv_s * c[13],
             v: [c[0], c[1], c[2], c[3]],
             lobe: core::array::from_fn(|p| DeonLobe {
                 inv_v: c[4 + p],
@@ -310,17 +318,46 @@ impl<R: Real> ChiangHair<R> {
 
     /// Geometry of the path through the fibre for wo and h: (gamma_o, gamma_t, per-channel
     /// segment transmittance, entry Fresnel reflectance).
+    ///
+    /// `h` must lie in [-1, 1]. The same quantities as [`crate::azimuthal::refracted_offset`],
+    /// [`crate::absorption::segment_transmittance`] (chord),
+    /// [`crate::fresnel::fresnel_dielectric`] and [`crate::real::safe_asin`] compute, with
+    /// the square roots and divisions they would repeat shared: `sqrt(eta^2 - sin_o^2) =
+    /// eta cos_t`, one reciprocal of cos_t serves the offset and the chord, and the asines
+    /// reuse the cosines `sqrt(1 - h^2)` and `cos gamma_t` (`safe_asin` computes them the same
+    /// way; the arguments lie in [-1, 1] so its clamp is idle).
     fn path(&self, sin_o: R, cos_o: R, h: R) -> (R, R, [R; 3], R) {
         let one = R::c(1.0);
-        let sin_t = sin_o / self.eta;
+        let sin_t = sin_o * self.inv_eta;
+        // cos_t >= sqrt(1 - 1/eta^2) > 0 for eta > 1.
         let cos_t = safe_sqrt(one - sin_t * sin_t);
-        let sin_gamma_t = refracted_offset(h, self.eta, sin_o, cos_o);
+        let inv_cos_t = one / cos_t;
+        let sin_gamma_t = h * cos_o * self.inv_eta * inv_cos_t;
         let cos_gamma_t = safe_sqrt(one - sin_gamma_t * sin_gamma_t);
-        let transmittance = self
-            .sigma_a
-            .map(|sa| segment_transmittance(sa, cos_gamma_t, cos_t, PathLength::Chord));
-        let fresnel = fresnel_dielectric(cos_o * safe_sqrt(one - h * h), self.eta);
-        (safe_asin(h), safe_asin(sin_gamma_t), transmittance, fresnel)
+        let chord = R::c(2.0) * cos_gamma_t * inv_cos_t;
+        let transmittance = self.sigma_a.map(|sa| (-sa * chord).exp());
+        let cos_gamma_o = safe_sqrt(one - h * h);
+        let fresnel = self.fresnel_from_outside(cos_o * cos_gamma_o);
+        let gamma_o = h.atan2(cos_gamma_o);
+        let gamma_t = sin_gamma_t.atan2(cos_gamma_t);
+        (gamma_o, gamma_t, transmittance, fresnel)
+    }
+
+    /// [`crate::fresnel::fresnel_dielectric`] for light arriving from outside, `cos_i` in
+    /// [0, 1]: with eta > 1 there is no total internal reflection (and cos_t > 0), and the two
+    /// amplitude ratios share one division,
+    /// `(r_par^2 + r_perp^2) / 2 = (a^2 d^2 + c^2 b^2) / (2 b^2 d^2)` with `r_par = a / b`,
+    /// `r_perp = c / d` (b, d >= cos_t > 0).
+    fn fresnel_from_outside(&self, cos_i: R) -> R {
+        let one = R::c(1.0);
+        let eta = self.eta;
+        let sin2_t = (one - cos_i * cos_i) * (self.inv_eta * self.inv_eta);
+        let cos_t = safe_sqrt(one - sin2_t);
+        let (a, b) = (eta * cos_i - cos_t, eta * cos_i + cos_t);
+        let (c, d) = (cos_i - eta * cos_t, cos_i + eta * cos_t);
+        let (bb, dd) = (b * b, d * d);
+        let r = (a * a * dd + c * c * bb) / (R::c(2.0) * bb * dd);
+        r.min(one)
     }
 
     /// M_p for p = 0..3 with the tilt of each lobe.
@@ -333,22 +370,52 @@ impl<R: Real> ChiangHair<R> {
 
     /// The azimuthal factors at offset `h` (clamped to [-1, 1]) for relative azimuth
     /// `phi = phi_i - phi_o`: `(A_p N_p per channel, w_p N_p)`.
-    pub(crate) fn azimuthal(&self, sin_o: R, cos_o: R, phi: R, h: R) -> ([[R; 3]; LOBES], [R; LOBES]) {
+    pub(crate) fn azimuthal(
+        &self,
+        sin_o: R,
+        cos_o: R,
+        phi: R,
+        h: R,
+    ) -> ([[R; 3]; LOBES], [R; LOBES]) {
+        let (a, n) = self.attenuations_and_azimuths(sin_o, cos_o, phi, h);
+        let w = Self::lobe_weights(&a);
+        (
+            core::array::from_fn(|p| a[p].map(|x| x * n[p])),
+            core::array::from_fn(|p| w[p] * n[p]),
+        )
+    }
+
+    /// `A_p` per channel and `N_p` at offset `h` (clamped to [-1, 1]) for relative azimuth
+    /// `phi`: the part of [`ChiangHair::azimuthal`] that evaluation needs (it skips the lobe
+    /// weights of sampling).
+    fn attenuations_and_azimuths(
+        &self,
+        sin_o: R,
+        cos_o: R,
+        phi: R,
+        h: R,
+    ) -> ([[R; 3]; LOBES], [R; LOBES]) {
         let h = h.clamp(R::c(-1.0), R::c(1.0));
         let (gamma_o, gamma_t, transmittance, fresnel) = self.path(sin_o, cos_o, h);
         let per_channel = transmittance.map(|t| attenuations_from_fresnel(fresnel, t));
         let a: [[R; 3]; LOBES] =
             core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
-        let w = Self::lobe_weights(&a);
-        let n: [R; LOBES] = core::array::from_fn(|p| {
-            if p < 3 {
-                let dphi = wrap_angle(phi - exit_angle(R::c(p as f64), gamma_o, gamma_t));
-                logistic(dphi, self.s) * self.inv_mass
-            } else {
-                R::c(0.5 * core::f64::consts::FRAC_1_PI)
-            }
+        // N_p = logistic(dphi_p, s) / (trimmed mass) = e_p / (s mass (1 + e_p)^2) with
+        // e_p = exp(-|dphi_p| / s): 1/s and 1/(s mass) are precomputed, and the three
+        // denominators (each in [1, 4]) share one division.
+        let e: [R; 3] = core::array::from_fn(|p| {
+            let dphi = wrap_angle(phi - exit_angle(R::c(p as f64), gamma_o, gamma_t));
+            (-dphi.abs() * self.inv_s).exp()
         });
-        (core::array::from_fn(|p| a[p].map(|x| x * n[p])), core::array::from_fn(|p| w[p] * n[p]))
+        let d = e.map(|e| (R::c(1.0) + e).sqr());
+        let r = self.logistic_norm / (d[0] * d[1] * d[2]);
+        let n = [
+            e[0] * (r * (d[1] * d[2])),
+            e[1] * (r * (d[0] * d[2])),
+            e[2] * (r * (d[0] * d[1])),
+            R::c(0.5 * core::f64::consts::FRAC_1_PI),
+        ];
+        (a, n)
     }
 
     /// The angles of a direction pair: (sin_i, cos_i, sin_o, cos_o, phi_i - phi_o).
@@ -369,18 +436,32 @@ impl<R: Real> ChiangHair<R> {
     ) -> LobeTerms<R> {
         let (sin_i, cos_i, sin_o, cos_o, phi) = Self::angles(wi, wo);
         let (an, wn) = azimuthal(sin_o, cos_o, phi);
-        LobeTerms { m: self.longitudinal(sin_i, cos_i, sin_o, cos_o), an, wn }
+        LobeTerms {
+            m: self.longitudinal(sin_i, cos_i, sin_o, cos_o),
+            an,
+            wn,
+        }
     }
 
     fn terms(&self, wi: V3<R>, wo: V3<R>, h: R) -> LobeTerms<R> {
-        self.terms_with(wi, wo, |sin_o, cos_o, phi| self.azimuthal(sin_o, cos_o, phi, h))
+        self.terms_with(wi, wo, |sin_o, cos_o, phi| {
+            self.azimuthal(sin_o, cos_o, phi, h)
+        })
     }
 
     /// `S(wi, wo, h)` per channel, for unit `wi`, `wo` in the local frame and offset `h` in
     /// [-1, 1] (clamped). No cosine factor (see the module documentation). Finite and
     /// non-negative for every finite input.
     pub fn eval(&self, wi: V3<R>, wo: V3<R>, h: R) -> [R; 3] {
-        self.terms(wi, wo, h).value()
+        // `terms(..).value()` without the lobe weights, which only the pdf needs.
+        let (sin_i, cos_i, sin_o, cos_o, phi) = Self::angles(wi, wo);
+        let (a, n) = self.attenuations_and_azimuths(sin_o, cos_o, phi, h);
+        LobeTerms {
+            m: self.longitudinal(sin_i, cos_i, sin_o, cos_o),
+            an: core::array::from_fn(|p| a[p].map(|x| x * n[p])),
+            wn: [R::c(0.0); LOBES],
+        }
+        .value()
     }
 
     /// The contribution `M_p A_p N_p` of each lobe (R, TT, TRT, residual) per channel; they sum
@@ -408,7 +489,11 @@ impl<R: Real> ChiangHair<R> {
     pub fn sample(&self, wo: V3<R>, h: R, u: [R; 2], uc: R) -> HairSample<R> {
         let wi = self.sample_direction(wo, h, u, uc);
         let terms = self.terms(wi, wo, h);
-        HairSample { wi, value: terms.value(), pdf: terms.pdf() }
+        HairSample {
+            wi,
+            value: terms.value(),
+            pdf: terms.pdf(),
+        }
     }
 
     /// The direction [`ChiangHair::sample`] draws, without evaluating S and the pdf there.

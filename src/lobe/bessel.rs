@@ -77,7 +77,9 @@ fn polynomials_single<R: Real>(x: R) -> (f64, R, R) {
     let large = x.max(R::c(3.75));
     let t = small * R::c(1.0 / 3.75);
     let near = horner(t * t, &AS_9_8_1);
-    let far = horner(R::c(3.75) / large, &AS_9_8_2) / large.sqrt();
+    // One division: 3.75 / x and 1 / sqrt(x) both from 1 / x.
+    let inv = R::c(1.0) / large;
+    let far = horner(R::c(3.75) * inv, &AS_9_8_2) * inv.sqrt();
     (3.75, near, far)
 }
 

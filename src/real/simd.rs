@@ -1,72 +1,187 @@
-//! Eight single-precision lanes per value: the same generic code evaluates eight samples at
-//! once. Transcendental functions are `wide`'s vectorised polynomial approximations, so results
-//! differ from the scalar `f32` instantiation by a few ulp (the tests bound the difference).
+//! Eight or sixteen single-precision lanes per value: the same generic code evaluates eight
+//! ([`f32x8`]) or sixteen ([`f32x16`]) samples at once. Transcendental functions are `wide`'s
+//! vectorised polynomial approximations, so results differ from the scalar `f32` instantiation
+//! by a few ulp (the tests bound the difference).
+//!
+//! Which width is fastest depends on the target features the crate is compiled with: `wide`
+//! maps [`f32x16`] to one AVX-512 register when `avx512f` is enabled (e.g.
+//! `RUSTFLAGS="-C target-cpu=native"` on an AVX-512 machine) and to two [`f32x8`] halves
+//! otherwise. [`BatchReal`] names the faster one for the current target.
 
 use super::Real;
-use wide::{f32x8, CmpLe, CmpLt};
+use wide::{f32x16, f32x8, i32x16, i32x8};
 
-impl Real for f32x8 {
-    /// A lane mask: all bits set where the comparison holds.
-    type Mask = f32x8;
-    const DOUBLE: bool = false;
+/// The lane type batch evaluation uses by default: [`f32x16`] when the crate is compiled with
+/// AVX-512 (one zmm register per value), [`f32x8`] otherwise.
+#[cfg(target_feature = "avx512f")]
+pub type BatchReal = f32x16;
+/// The lane type batch evaluation uses by default: [`f32x16`] when the crate is compiled with
+/// AVX-512 (one zmm register per value), [`f32x8`] otherwise.
+#[cfg(not(target_feature = "avx512f"))]
+pub type BatchReal = f32x8;
 
-    #[inline(always)]
-    fn c(value: f64) -> Self {
-        f32x8::splat(value as f32)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        f32x8::sqrt(self)
-    }
-    #[inline(always)]
-    fn exp(self) -> Self {
-        f32x8::exp(self)
-    }
-    #[inline(always)]
-    fn ln(self) -> Self {
-        f32x8::ln(self)
-    }
-    #[inline(always)]
-    fn sin(self) -> Self {
-        f32x8::sin(self)
-    }
-    #[inline(always)]
-    fn cos(self) -> Self {
-        f32x8::cos(self)
-    }
-    #[inline(always)]
-    fn atan2(self, x: Self) -> Self {
-        f32x8::atan2(self, x)
-    }
-    #[inline(always)]
-    fn abs(self) -> Self {
-        f32x8::abs(self)
-    }
-    #[inline(always)]
-    fn min(self, other: Self) -> Self {
-        f32x8::fast_min(self, other)
-    }
-    #[inline(always)]
-    fn max(self, other: Self) -> Self {
-        f32x8::fast_max(self, other)
-    }
-    #[inline(always)]
-    fn floor(self) -> Self {
-        f32x8::floor(self)
-    }
-    #[inline(always)]
-    fn lt(self, other: Self) -> Self {
-        self.cmp_lt(other)
-    }
-    #[inline(always)]
-    fn le(self, other: Self) -> Self {
-        self.cmp_le(other)
-    }
-    #[inline(always)]
-    fn select(mask: Self, on_true: Self, on_false: Self) -> Self {
-        mask.blend(on_true, on_false)
-    }
+/// `floor` in vector instructions only, equal to `f32::floor` in every lane for every input
+/// (signed zeros and NaN included): `|x| < 2^23` is rounded to the nearest integer by adding
+/// and subtracting 2^23 (exact: the spacing of floats in [2^23, 2^24) is 1), the sign of x is
+/// put back, and 1 is subtracted where that rounded up. Larger magnitudes, infinities and NaN
+/// are already integers (or NaN) and pass through.
+#[allow(unused_macros)]
+macro_rules! floor_without_sse41 {
+    ($t:ident, $x:expr) => {{
+        let x: $t = $x;
+        let two_23 = $t::splat(8_388_608.0);
+        let sign = x & $t::splat(-0.0);
+        let magnitude = x.abs();
+        let nearest = ((magnitude + two_23) - two_23) | sign;
+        let floor = nearest - (x.simd_lt(nearest) & $t::ONE);
+        magnitude.simd_lt(two_23).select(floor, x)
+    }};
 }
+
+/// `exp` with the range reduction and polynomial of `wide`'s `exp` (Cephes: `x = r ln 2 + f`,
+/// |f| <= ln 2 / 2, degree-7 polynomial, about 1 ulp) but without its data-dependent branches
+/// and its eight special-case selects: the argument is clamped to [-87.34, 88.72] so that
+/// `2^r` is one exponent-field shift (r is capped at 127, so above 88.38 the reduced argument
+/// grows to ln 2 and the error to about 1e-6 relative), then three selects restore the edges: 0 below -87.34
+/// (where `f32::exp` gives subnormals under 1.2e-38), infinity above 88.72, NaN for NaN.
+macro_rules! lean_exp {
+    ($t:ident, $i:ident, $x:expr) => {{
+        let x: $t = $x;
+        let lo = $t::splat(-87.336_54);
+        let hi = $t::splat(88.722_83);
+        let c = x.fast_max(lo).fast_min(hi);
+        let r = (c * $t::LOG2_E)
+            .round_ties_even()
+            .fast_min($t::splat(127.0));
+        let f = r.mul_neg_add($t::splat(0.693_359_4), c);
+        let f = r.mul_neg_add($t::splat(-2.121_944_4e-4), f);
+        let mut z = $t::splat(1.0 / 5040.0);
+        for k in [720.0, 120.0, 24.0, 6.0, 2.0] {
+            z = z.mul_add(f, $t::splat(1.0 / k));
+        }
+        let z = z.mul_add(f * f, f) + $t::ONE;
+        // 2^r for integer r in [-126, 127]: the biased exponent r + 127 shifted into place.
+        let biased: $i = wide::bytemuck::cast(r + $t::splat(8_388_608.0 + 127.0));
+        let scale: $t = wide::bytemuck::cast(biased << 23);
+        let result = z * scale;
+        let result = x.simd_lt(lo).select($t::ZERO, result);
+        let result = hi.simd_lt(x).select($t::splat(f32::INFINITY), result);
+        x.simd_eq(x).select(result, x)
+    }};
+}
+
+/// `atan2` with the octant reduction and polynomial of `wide`'s `atan2` (Cephes `atanf`, after
+/// Agner Fog's vector class library) but one division instead of two: `wide` divides
+/// `t = min / max` and then `(t - 1) / (t + 1)` for t >= sqrt 2 - 1, which equals
+/// `(min - max) / (min + max)`, so the numerator and denominator are selected first. It also
+/// drops `wide`'s branch for both arguments infinite ([`Real::atan2`] is called with finite
+/// arguments). `atan2(+-0, +-0)` follows `wide` (0 or +-pi by the signs).
+macro_rules! lean_atan2 {
+    ($t:ident, $y:expr, $x:expr) => {{
+        let (y, x): ($t, $t) = ($y, $x);
+        let (ax, ay) = (x.abs(), y.abs());
+        let swap = ay.simd_gt(ax);
+        let small = ax.fast_min(ay);
+        let large = ax.fast_max(ay);
+        let not_small = small.simd_ge(large * $t::splat(core::f32::consts::SQRT_2 - 1.0));
+        let z = not_small.select(small - large, small) / not_small.select(small + large, large);
+        let offset = not_small & $t::FRAC_PI_4;
+        let zz = z * z;
+        let mut p = $t::splat(8.053_744_5e-2);
+        for c in [-1.387_768_6e-1, 1.997_771_1e-1, -3.333_295e-1] {
+            p = p.mul_add(zz, $t::splat(c));
+        }
+        let mut re = p.mul_add(zz * z, z) + offset;
+        re = swap.select($t::FRAC_PI_2 - re, re);
+        re = (x | y).simd_eq($t::ZERO).select($t::ZERO, re);
+        re = x.is_sign_negative().select($t::PI - re, re);
+        y.is_sign_negative().select(-re, re)
+    }};
+}
+
+macro_rules! impl_real_for_lanes {
+    ($t:ident, $i:ident) => {
+        impl Real for $t {
+            /// A lane mask: all bits set where the comparison holds.
+            type Mask = $t;
+            const DOUBLE: bool = false;
+
+            #[inline(always)]
+            fn c(value: f64) -> Self {
+                $t::splat(value as f32)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                $t::sqrt(self)
+            }
+            #[inline(always)]
+            fn exp(self) -> Self {
+                lean_exp!($t, $i, self)
+            }
+            #[inline(always)]
+            fn ln(self) -> Self {
+                $t::ln(self)
+            }
+            #[inline(always)]
+            fn sin(self) -> Self {
+                $t::sin(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                $t::cos(self)
+            }
+            #[inline(always)]
+            fn atan2(self, x: Self) -> Self {
+                lean_atan2!($t, self, x)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                $t::abs(self)
+            }
+            #[inline(always)]
+            fn min(self, other: Self) -> Self {
+                $t::fast_min(self, other)
+            }
+            #[inline(always)]
+            fn max(self, other: Self) -> Self {
+                $t::fast_max(self, other)
+            }
+            #[inline(always)]
+            fn floor(self) -> Self {
+                #[cfg(all(
+                    any(target_arch = "x86", target_arch = "x86_64"),
+                    not(target_feature = "sse4.1")
+                ))]
+                {
+                    // Without SSE4.1 `wide` floors lane by lane through libm.
+                    floor_without_sse41!($t, self)
+                }
+                #[cfg(not(all(
+                    any(target_arch = "x86", target_arch = "x86_64"),
+                    not(target_feature = "sse4.1")
+                )))]
+                {
+                    $t::floor(self)
+                }
+            }
+            #[inline(always)]
+            fn lt(self, other: Self) -> Self {
+                self.simd_lt(other)
+            }
+            #[inline(always)]
+            fn le(self, other: Self) -> Self {
+                self.simd_le(other)
+            }
+            #[inline(always)]
+            fn select(mask: Self, on_true: Self, on_false: Self) -> Self {
+                mask.select(on_true, on_false)
+            }
+        }
+    };
+}
+
+impl_real_for_lanes!(f32x8, i32x8);
+impl_real_for_lanes!(f32x16, i32x16);
 
 #[cfg(test)]
 mod tests {
@@ -82,5 +197,164 @@ mod tests {
         }
         let m = <f32x8 as Real>::select(f32x8::from(xs).lt(f32x8::ZERO), f32x8::ONE, f32x8::ZERO);
         assert_eq!(m.to_array(), [1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn floor_equals_scalar_floor_bit_for_bit() {
+        let mut xs = vec![
+            0.0_f32,
+            -0.0,
+            0.3,
+            -0.3,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            1.5,
+            -1.5,
+            2.5,
+            -2.5,
+            0.999_999_94,
+            -0.999_999_94,
+            4_194_303.5,
+            -4_194_303.5,
+            8_388_607.5,
+            -8_388_607.5,
+            8_388_608.0,
+            -8_388_609.0,
+            1e30,
+            -1e30,
+            f32::MIN_POSITIVE,
+            -f32::MIN_POSITIVE,
+            1e-45,
+            -1e-45,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        xs.extend((0..4000).map(|k| (k as f32 - 2000.0) * 0.173_1));
+        while xs.len() % 16 != 0 {
+            xs.push(7.25);
+        }
+        for chunk in xs.chunks_exact(16) {
+            let a: [f32; 16] = chunk.try_into().unwrap();
+            let got = <f32x16 as Real>::floor(f32x16::from(a)).to_array();
+            for (x, g) in a.iter().zip(got) {
+                let want = x.floor();
+                assert!(
+                    want.to_bits() == g.to_bits() || (want.is_nan() && g.is_nan()),
+                    "floor({x:e}) = {g:e}, want {want:e}"
+                );
+            }
+            let lo = <f32x8 as Real>::floor(f32x8::from(<[f32; 8]>::try_from(&a[..8]).unwrap()));
+            assert_eq!(
+                lo.to_array().map(f32::to_bits)[..],
+                got.map(f32::to_bits)[..8]
+            );
+        }
+    }
+
+    #[test]
+    fn exp_is_accurate_and_handles_the_edges() {
+        let mut xs: Vec<f32> = (0..20_000).map(|k| -100.0 + k as f32 * 0.009_5).collect();
+        xs.extend([
+            0.0, -0.0, 1e-30, -1e-30, -87.3, -87.4, 88.7, 88.73, 100.0, -1e30, 1e30,
+        ]);
+        xs.extend([f32::INFINITY, f32::NEG_INFINITY, f32::NAN]);
+        while xs.len() % 16 != 0 {
+            xs.push(0.5);
+        }
+        for chunk in xs.chunks_exact(16) {
+            let a: [f32; 16] = chunk.try_into().unwrap();
+            let got = <f32x16 as Real>::exp(f32x16::from(a)).to_array();
+            let lo = <f32x8 as Real>::exp(f32x8::from(<[f32; 8]>::try_from(&a[..8]).unwrap()));
+            for (k, (x, g)) in a.iter().zip(got).enumerate() {
+                let want = (*x as f64).exp();
+                if x.is_nan() {
+                    assert!(g.is_nan());
+                } else if want > f32::MAX as f64 {
+                    assert_eq!(g, f32::INFINITY, "exp({x})");
+                } else if want < 1.18e-38 {
+                    assert!(
+                        g == 0.0 || (g as f64 - want).abs() < 1.2e-38,
+                        "exp({x}) = {g}"
+                    );
+                } else {
+                    let rel = (g as f64 - want).abs() / want;
+                    // Above 88.38 the reduced argument grows to ln 2 (r is capped at 127).
+                    let bound = if *x > 88.38 { 2e-6 } else { 3e-7 };
+                    assert!(rel < bound, "exp({x}) = {g}, want {want}: {rel:e}");
+                }
+                if k < 8 {
+                    let l = lo.to_array()[k];
+                    assert!(
+                        l == g || (l.is_nan() && g.is_nan()) || (l - g).abs() <= 2e-7 * g.abs()
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn atan2_is_accurate_in_every_quadrant() {
+        let mut pairs = Vec::new();
+        for k in 0..4000 {
+            let a = -3.2 + k as f32 * 0.0016;
+            for r in [1e-3_f32, 0.7, 1.0, 25.0] {
+                pairs.push((r * a.sin(), r * a.cos()));
+            }
+        }
+        pairs.extend([
+            (0.0, 1.0),
+            (-0.0, 1.0),
+            (0.0, -1.0),
+            (-0.0, -1.0),
+            (1.0, 0.0),
+            (-1.0, 0.0),
+        ]);
+        pairs.extend([
+            (1.0, -0.0),
+            (1e-30, 1.0),
+            (1.0, 1e-30),
+            (0.5, 0.5),
+            (-0.3, -0.3),
+        ]);
+        while pairs.len() % 16 != 0 {
+            pairs.push((0.25, -0.5));
+        }
+        for chunk in pairs.chunks_exact(16) {
+            let y = f32x16::from(core::array::from_fn::<f32, 16, _>(|k| chunk[k].0));
+            let x = f32x16::from(core::array::from_fn::<f32, 16, _>(|k| chunk[k].1));
+            let got = <f32x16 as Real>::atan2(y, x).to_array();
+            for ((y, x), g) in chunk.iter().zip(got) {
+                let want = (*y as f64).atan2(*x as f64);
+                assert!(
+                    (g as f64 - want).abs() < 4e-7,
+                    "atan2({y}, {x}) = {g}, want {want}"
+                );
+                assert_eq!(
+                    g.is_sign_negative(),
+                    want.is_sign_negative(),
+                    "atan2({y}, {x})"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn sixteen_lanes_agree_with_eight() {
+        let xs: [f32; 16] = core::array::from_fn(|k| k as f32 * 1.37 - 9.0);
+        let wide16 = wrap_angle(f32x16::from(xs)).exp().to_array();
+        let lo = wrap_angle(f32x8::from(<[f32; 8]>::try_from(&xs[..8]).unwrap())).exp();
+        let hi = wrap_angle(f32x8::from(<[f32; 8]>::try_from(&xs[8..]).unwrap())).exp();
+        for (a, b) in wide16
+            .iter()
+            .zip(lo.to_array().iter().chain(&hi.to_array()))
+        {
+            assert!((a - b).abs() <= 1e-6 * b.abs(), "{a} vs {b}");
+        }
+        let m =
+            <f32x16 as Real>::select(f32x16::from(xs).lt(f32x16::ZERO), f32x16::ONE, f32x16::ZERO);
+        assert_eq!(m.to_array().iter().sum::<f32>(), 7.0);
     }
 }

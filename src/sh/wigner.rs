@@ -227,10 +227,7 @@ pub fn wigner_3j(
 ) -> Result<f64, ParamError> {
     let tj = [j1.twice, j2.twice, j3.twice];
     let tm = [m1.twice, m2.twice, m3.twice];
-    Ok(match racah_checked(tj, tm)? {
-        None => 0.0,
-        Some(exact) => exact.to_f64(),
-    })
+    racah_f64(tj, tm)
 }
 
 /// [`wigner_3j`] for integer arguments `(l1 l2 l3; m1 m2 m3)` (orbital angular momenta).
@@ -246,7 +243,17 @@ pub fn wigner_3j_int(
     m3: i32,
 ) -> Result<f64, ParamError> {
     let (tj, tm) = int_args(l1, l2, l3, m1, m2, m3)?;
-    Ok(match racah_checked(tj, tm)? {
+    racah_f64(tj, tm)
+}
+
+/// Validates, then evaluates by [`racah_small`] when it applies and by the general
+/// prime-factorised [`racah`] otherwise.
+fn racah_f64(tj: [i32; 3], tm: [i32; 3]) -> Result<f64, ParamError> {
+    validate(tj, tm)?;
+    if let Some(x) = racah_small(tj, tm) {
+        return Ok(x);
+    }
+    Ok(match racah(tj.map(i64::from), tm.map(i64::from)) {
         None => 0.0,
         Some(exact) => exact.to_f64(),
     })
@@ -309,6 +316,13 @@ pub(crate) fn int_args(
 
 /// Validates twice-valued arguments; `Ok(None)` when a selection rule makes the symbol zero.
 pub(crate) fn racah_checked(tj: [i32; 3], tm: [i32; 3]) -> Result<Option<Exact>, ParamError> {
+    validate(tj, tm)?;
+    Ok(racah(tj.map(i64::from), tm.map(i64::from)))
+}
+
+/// The argument checks of [`wigner_3j`] (errors for malformed arguments only; selection rules
+/// are not errors).
+fn validate(tj: [i32; 3], tm: [i32; 3]) -> Result<(), ParamError> {
     const J: [&str; 3] = ["j1", "j2", "j3"];
     const M: [&str; 3] = ["m1", "m2", "m3"];
     for i in 0..3 {
@@ -348,9 +362,7 @@ pub(crate) fn racah_checked(tj: [i32; 3], tm: [i32; 3]) -> Result<Option<Exact>,
             allowed: "j1 + j2 + j3 must be an integer",
         });
     }
-    let tj = tj.map(i64::from);
-    let tm = tm.map(i64::from);
-    Ok(racah(tj, tm))
+    Ok(())
 }
 
 /// Exact value `(-1)^negative * n * sqrt(prod_p p^exps[p])`, `exps` indexed by the integer `p`
@@ -651,6 +663,130 @@ fn racah(tj: [i64; 3], tm: [i64; 3]) -> Option<Exact> {
     })
 }
 
+/// Largest `J = j1 + j2 + j3` of [`racah_small`]: `J! < 2^64` (`20! = 2.4e18`).
+const SMALL_J: usize = 20;
+
+/// `n!` for `n <= SMALL_J`.
+const FACTORIAL: [u64; SMALL_J + 1] = {
+    let mut f = [1u64; SMALL_J + 1];
+    let mut n = 1;
+    while n <= SMALL_J {
+        f[n] = f[n - 1] * n as u64;
+        n += 1;
+    }
+    f
+};
+
+/// The primes up to `SMALL_J + 1`.
+const SMALL_PRIMES: [u64; 8] = [2, 3, 5, 7, 11, 13, 17, 19];
+
+/// Exponents of [`SMALL_PRIMES`] in `n!` for `n <= SMALL_J + 1` (Legendre's formula).
+const FACTORIAL_EXPONENTS: [[i32; 8]; SMALL_J + 2] = {
+    let mut t = [[0i32; 8]; SMALL_J + 2];
+    let mut n = 0;
+    while n < SMALL_J + 2 {
+        let mut i = 0;
+        while i < 8 {
+            let p = SMALL_PRIMES[i] as usize;
+            let (mut q, mut e) = (n / p, 0);
+            while q > 0 {
+                e += q;
+                q /= p;
+            }
+            t[n][i] = e as i32;
+            i += 1;
+        }
+        n += 1;
+    }
+    t
+};
+
+/// Racah's formula in machine integers for validated arguments with `J = j1 + j2 + j3 <=
+/// SMALL_J`, correctly rounded; `None` when it does not apply (larger `J`, an intermediate
+/// overflowing `u64`, or a rounding the `u128` enclosure cannot decide), and the caller then
+/// uses the general [`racah`].
+///
+/// The six factorial arguments of each term sum to `J` (`k + (j3-j2+m1+k) + (j3-j1-m2+k) +
+/// (j1+j2-j3-k) + (j1-m1-k) + (j2+m2-k) = J`), so each term's denominator `D_k` divides `J!`
+/// (the quotient is a multinomial coefficient) and the sum is exactly `S / J!` with the integer
+/// `S = Σ_k (-1)^k J!/D_k`, `|S| <= 6^J < 2^52`. Then
+/// `value^2 = S^2 a1! a2! a3! Π (j±m)! / ((J+1)! (J!)^2)`: the factorials go to prime exponents
+/// (table), giving `value = ±na sqrt(s) / c` with `s` square-free, and one rounding by
+/// [`round_product_sqrt_small`]. No heap allocation.
+#[inline]
+// `u64::is_multiple_of` needs Rust 1.87; the crate's rust-version is 1.85.
+#[allow(clippy::manual_is_multiple_of)]
+fn racah_small(tj: [i32; 3], tm: [i32; 3]) -> Option<f64> {
+    if tm[0] + tm[1] + tm[2] != 0 || (0..3).any(|i| tm[i].abs() > tj[i]) {
+        return Some(0.0);
+    }
+    let twice_a = [
+        tj[0] + tj[1] - tj[2],
+        tj[0] - tj[1] + tj[2],
+        tj[1] + tj[2] - tj[0],
+    ];
+    if twice_a.iter().any(|&t| t < 0) {
+        return Some(0.0);
+    }
+    let big_j = ((tj[0] + tj[1] + tj[2]) / 2) as usize;
+    if big_j > SMALL_J {
+        return None;
+    }
+    let a = twice_a.map(|t| (t / 2) as usize);
+    let jp: [usize; 3] = core::array::from_fn(|i| ((tj[i] + tm[i]) / 2) as usize);
+    let jm: [usize; 3] = core::array::from_fn(|i| ((tj[i] - tm[i]) / 2) as usize);
+    let b1 = (tj[2] - tj[1] + tm[0]) / 2;
+    let b2 = (tj[2] - tj[0] - tm[1]) / 2;
+    let (c1, c2, c3) = (a[0] as i32, jm[0] as i32, jp[1] as i32);
+    let kmin = 0.max(-b1).max(-b2);
+    let kmax = c1.min(c2).min(c3);
+    if kmin > kmax {
+        return Some(0.0);
+    }
+    let f = |n: i32| FACTORIAL[n as usize];
+    let j_factorial = FACTORIAL[big_j];
+    let mut sum: i64 = 0;
+    for k in kmin..=kmax {
+        // D_k divides J! <= 20!, so no product overflows.
+        let d = f(k) * f(k + b1) * f(k + b2) * f(c1 - k) * f(c2 - k) * f(c3 - k);
+        let t = (j_factorial / d) as i64;
+        sum += if k & 1 == 0 { t } else { -t };
+    }
+    if sum == 0 {
+        return Some(0.0);
+    }
+    let mut e = [0i32; 8];
+    for n in [a[0], a[1], a[2], jp[0], jp[1], jp[2], jm[0], jm[1], jm[2]] {
+        for (e, f) in e.iter_mut().zip(&FACTORIAL_EXPONENTS[n]) {
+            *e += f;
+        }
+    }
+    let (jf1, jf) = (&FACTORIAL_EXPONENTS[big_j + 1], &FACTORIAL_EXPONENTS[big_j]);
+    let mut na = sum.unsigned_abs();
+    let (mut c, mut s) = (1u64, 1u64);
+    for i in 0..8 {
+        let p = SMALL_PRIMES[i];
+        let mut e = e[i] - jf1[i] - 2 * jf[i];
+        // Cancel common factors of S and the denominator: S sqrt(p^e) = (S/p) sqrt(p^(e+2)).
+        while e < 0 && na % p == 0 {
+            na /= p;
+            e += 2;
+        }
+        if e & 1 != 0 {
+            s *= p;
+        }
+        let h = e >> 1; // floor(e / 2)
+        if h > 0 {
+            na = na.checked_mul(p.checked_pow(h as u32)?)?;
+        } else if h < 0 {
+            c = c.checked_mul(p.checked_pow(h.unsigned_abs())?)?;
+        }
+    }
+    let x = round_product_sqrt_small(na, c, s)?;
+    let negative = ((tj[0] - tj[1] - tm[2]) / 2).rem_euclid(2) == 1;
+    Some(if negative != (sum < 0) { -x } else { x })
+}
+
 fn horner_small(n_terms: usize, ratio: &dyn Fn(usize) -> (i64, i64)) -> Option<BigInt> {
     let mut n: i128 = 1;
     let mut b_acc: i128 = 1;
@@ -865,6 +1001,82 @@ mod tests {
             round_scaled(&BigUint::from(3u32), 1076, false),
             f64::from_bits(1)
         );
+    }
+
+    /// Every valid symbol (integer and half-integer) with `J = j1 + j2 + j3 <= SMALL_J`.
+    fn small_symbols() -> Vec<([i32; 3], [i32; 3])> {
+        let max = 2 * SMALL_J as i32;
+        let mut out = Vec::new();
+        for t1 in 0..=max {
+            for t2 in 0..=max - t1 {
+                for t3 in (t1 - t2).abs()..=(t1 + t2).min(max - t1 - t2) {
+                    if (t1 + t2 + t3) % 2 != 0 {
+                        continue;
+                    }
+                    for m1 in (-t1..=t1).step_by(2) {
+                        for m2 in (-t2..=t2).step_by(2) {
+                            if (m1 + m2).abs() <= t3 {
+                                out.push(([t1, t2, t3], [m1, m2, -m1 - m2]));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn the_small_path_agrees_with_the_general_one() {
+        // Both are correctly rounded, so they must agree bit for bit; the general one is
+        // checked against an independent reference in tests/sh_wigner.rs.
+        let (mut fast, mut nonzero) = (0, 0);
+        let symbols = small_symbols();
+        for &(tj, tm) in &symbols {
+            let general = racah_checked(tj, tm)
+                .unwrap()
+                .map_or(0.0, |exact| exact.to_f64());
+            nonzero += usize::from(general != 0.0);
+            if let Some(x) = racah_small(tj, tm) {
+                assert_eq!(x.to_bits(), general.to_bits(), "{tj:?} {tm:?}");
+                fast += 1;
+            }
+            let via_api = wigner_3j(
+                HalfInt::from_twice(tj[0]),
+                HalfInt::from_twice(tj[1]),
+                HalfInt::from_twice(tj[2]),
+                HalfInt::from_twice(tm[0]),
+                HalfInt::from_twice(tm[1]),
+                HalfInt::from_twice(tm[2]),
+            );
+            assert_eq!(
+                via_api.unwrap().to_bits(),
+                general.to_bits(),
+                "{tj:?} {tm:?}"
+            );
+        }
+        assert!(
+            symbols.len() > 100_000 && nonzero > 50_000,
+            "{} {nonzero}",
+            symbols.len()
+        );
+        // The fast path decides (almost) everything: the fallback is for overflow or undecided
+        // roundings only.
+        assert!(
+            fast * 100 >= symbols.len() * 99,
+            "{fast} of {}",
+            symbols.len()
+        );
+    }
+
+    #[test]
+    fn the_small_path_covers_j_up_to_5() {
+        // Every integer symbol with j <= 5 (the benchmark set) takes the fast path.
+        for (tj, tm) in small_symbols() {
+            if tj.iter().all(|&t| t <= 10 && t % 2 == 0) {
+                assert!(racah_small(tj, tm).is_some(), "{tj:?} {tm:?}");
+            }
+        }
     }
 
     #[test]

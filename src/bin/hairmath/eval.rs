@@ -3,21 +3,33 @@
 use crate::CliError;
 use clap::{ArgGroup, Args, ValueEnum};
 use hairmath::absorption::{sigma_a_from_color, sigma_a_from_melanin, Rgb};
-use hairmath::bcsdf::{ChiangHair, ChiangParams};
+use hairmath::bcsdf::{ChiangFarField, ChiangHair, ChiangParams, FarFieldRule};
 use hairmath::geometry::V3;
 use std::io::{self, BufRead, BufWriter, Write};
 
 /// Largest accepted deviation of a direction's length from 1.
 const UNIT_TOLERANCE: f64 = 1e-3;
 
-/// The columns every input must have, in the order the evaluation uses them.
+/// The columns the near-field models need, in the order the evaluation uses them; the
+/// far-field model needs all but the last (`h`).
 const REQUIRED: [&str; 7] = ["wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z", "h"];
+
+/// Default node count of `--model chiang-far`.
+const DEFAULT_NODES: usize = 64;
+
+/// Relative tolerance of `--model chiang-far --reference`.
+const REFERENCE_REL_TOL: f64 = 1e-9;
 
 /// The scattering models `eval` knows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Model {
     /// Chiang et al. 2016 (pbrt-v4 `HairBxDF`), the near-field reference.
     Chiang,
+    /// The far field of Chiang et al. 2016: S(wi, wo) averaged over h uniform in [-1, 1]
+    /// (no `h` column needed; one, if present, is passed through and ignored). Integrated
+    /// over h with a fixed Gauss-Legendre rule of --nodes nodes, or with the adaptive
+    /// reference integrator (--reference, relative tolerance 1e-9, about 0.2 ms per row).
+    ChiangFar,
 }
 
 /// Arguments of `hairmath eval`.
@@ -64,6 +76,13 @@ pub struct EvalArgs {
     /// (inverted to sigma_a with beta_n, Chiang et al. 2016 section 4.2).
     #[arg(long, value_name = "R,G,B", value_parser = parse_floats::<3>, allow_hyphen_values = true)]
     color: Option<[f64; 3]>,
+    /// chiang-far only: node count (1..=512) of the fixed rule over h [default: 64].
+    #[arg(long, value_name = "N", conflicts_with = "reference")]
+    nodes: Option<usize>,
+    /// chiang-far only: integrate over h with the adaptive reference integrator (relative
+    /// tolerance 1e-9) instead of the fixed rule.
+    #[arg(long)]
+    reference: bool,
 }
 
 /// Parses exactly `N` comma-separated numbers (clap value parser).
@@ -84,16 +103,30 @@ fn parse_floats<const N: usize>(text: &str) -> Result<[f64; N], String> {
     Ok(out)
 }
 
-/// A model ready to evaluate (one variant per [`Model`]).
+/// A model ready to evaluate (one variant per [`Model`] and integrator).
 enum Evaluator {
     Chiang(ChiangHair<f64>),
+    ChiangFar(ChiangFarField<f64>),
+    ChiangFarReference(ChiangHair<f64>),
 }
 
 impl Evaluator {
-    /// `S(wi, wo, h)` per channel, no cosine factor.
+    /// The input columns this model needs, in the order of [`Evaluator::eval`]'s arguments.
+    fn columns(&self) -> &'static [&'static str] {
+        match self {
+            Evaluator::Chiang(_) => &REQUIRED,
+            Evaluator::ChiangFar(_) | Evaluator::ChiangFarReference(_) => &REQUIRED[..6],
+        }
+    }
+
+    /// `S(wi, wo, h)` per channel, no cosine factor (the far-field models ignore `h`).
     fn eval(&self, wi: V3<f64>, wo: V3<f64>, h: f64) -> [f64; 3] {
         match self {
             Evaluator::Chiang(hair) => hair.eval(wi, wo, h),
+            Evaluator::ChiangFar(far) => far.eval(wi, wo),
+            Evaluator::ChiangFarReference(hair) => {
+                hair.far_field_reference(wi, wo, REFERENCE_REL_TOL).value
+            }
         }
     }
 }
@@ -124,8 +157,18 @@ impl EvalArgs {
             sigma_a,
         )
         .map_err(|e| CliError::Params(e.to_string()))?;
+        let hair = ChiangHair::new(&params);
         match self.model {
-            Model::Chiang => Ok(Evaluator::Chiang(ChiangHair::new(&params))),
+            Model::Chiang if self.nodes.is_some() || self.reference => Err(CliError::Params(
+                "--nodes and --reference apply only to --model chiang-far".into(),
+            )),
+            Model::Chiang => Ok(Evaluator::Chiang(hair)),
+            Model::ChiangFar if self.reference => Ok(Evaluator::ChiangFarReference(hair)),
+            Model::ChiangFar => {
+                let rule = FarFieldRule::gauss_legendre(self.nodes.unwrap_or(DEFAULT_NODES))
+                    .map_err(|e| CliError::Params(e.to_string()))?;
+                Ok(Evaluator::ChiangFar(ChiangFarField::new(hair, &rule)))
+            }
         }
     }
 }
@@ -133,33 +176,59 @@ impl EvalArgs {
 /// Runs `hairmath eval`: stdin to stdout, flushing what was written even on error.
 pub fn run(args: &EvalArgs) -> Result<(), CliError> {
     let model = args.evaluator()?;
+    run_csv(|input, out| process(&model, input, out))
+}
+
+/// Runs a CSV filter `process` from stdin to stdout, flushing what was written even when it
+/// fails (so the rows before a bad one reach the reader).
+pub(crate) fn run_csv(
+    process: impl FnOnce(io::StdinLock<'static>, &mut dyn Write) -> Result<(), CliError>,
+) -> Result<(), CliError> {
     let mut out = BufWriter::new(io::stdout().lock());
-    let result = process(&model, io::stdin().lock(), &mut out);
+    let result = process(io::stdin().lock(), &mut out);
     let flushed = out.flush();
     result?;
     flushed.map_err(CliError::Io)
 }
 
 /// Reads the header and the rows from `input`, writes the extended CSV to `out`.
-fn process(model: &Evaluator, input: impl BufRead, out: &mut impl Write) -> Result<(), CliError> {
+fn process(model: &Evaluator, input: impl BufRead, out: &mut dyn Write) -> Result<(), CliError> {
+    filter_csv(input, out, model.columns(), "f_r,f_g,f_b", |fields| {
+        let row = parse_row(fields)?;
+        let [r, g, b] = model.eval(row.wi, row.wo, row.h);
+        Ok(format!("{r},{g},{b}"))
+    })
+}
+
+/// The CSV loop shared by the subcommands: reads a header naming (at least) the columns
+/// `names`, writes it with `,{appended}`; then for each non-blank row calls `row` with the
+/// fields of `names` (in that order) and writes the row with `,{result}` appended. The first
+/// error is returned with its line number (the header is line 1).
+pub(crate) fn filter_csv(
+    input: impl BufRead,
+    out: &mut dyn Write,
+    names: &[&str],
+    appended: &str,
+    mut row: impl FnMut(&[&str]) -> Result<String, String>,
+) -> Result<(), CliError> {
     let mut lines = input.lines();
     let header = match lines.next() {
         None => return Err(CliError::input(1, "empty input: expected a header row")),
         Some(line) => line.map_err(|e| read_error(1, e))?,
     };
-    let columns = Columns::from_header(&header).map_err(|m| CliError::input(1, m))?;
-    writeln!(out, "{header},f_r,f_g,f_b")?;
+    let columns = Columns::from_header(&header, names).map_err(|m| CliError::input(1, m))?;
+    writeln!(out, "{header},{appended}")?;
     for (index, line) in lines.enumerate() {
         let number = index + 2;
         let line = line.map_err(|e| read_error(number, e))?;
         if line.trim().is_empty() {
             continue;
         }
-        let row = columns
-            .parse_row(&line)
+        let result = columns
+            .select(&line)
+            .and_then(|fields| row(&fields))
             .map_err(|m| CliError::input(number, m))?;
-        let [r, g, b] = model.eval(row.wi, row.wo, row.h);
-        writeln!(out, "{line},{r},{g},{b}")?;
+        writeln!(out, "{line},{result}")?;
     }
     Ok(())
 }
@@ -173,11 +242,11 @@ fn read_error(line: usize, e: io::Error) -> CliError {
 struct Columns {
     /// Number of fields in the header (every row must have as many).
     count: usize,
-    /// Field index of each name of [`REQUIRED`].
-    index: [usize; REQUIRED.len()],
+    /// Field index of each required name, in the order the names were given.
+    index: Vec<usize>,
 }
 
-/// One validated input row: unit directions and the offset.
+/// One validated input row: unit directions and the offset (0 when not read).
 struct Row {
     wi: V3<f64>,
     wo: V3<f64>,
@@ -185,15 +254,15 @@ struct Row {
 }
 
 impl Columns {
-    /// Finds the required columns; names a missing or duplicated one.
-    fn from_header(header: &str) -> Result<Self, String> {
+    /// Finds the columns `required` in `header`; names a missing or duplicated one.
+    fn from_header(header: &str, required: &[&str]) -> Result<Self, String> {
         let names: Vec<&str> = header.split(',').map(str::trim).collect();
-        let mut index = [0; REQUIRED.len()];
+        let mut index = Vec::with_capacity(required.len());
         let mut missing = Vec::new();
-        for (slot, &name) in index.iter_mut().zip(&REQUIRED) {
+        for &name in required {
             let mut found = names.iter().enumerate().filter(|(_, n)| **n == name);
             match (found.next(), found.next()) {
-                (Some((i, _)), None) => *slot = i,
+                (Some((i, _)), None) => index.push(i),
                 (Some(_), Some(_)) => return Err(format!("column {name} appears more than once")),
                 (None, _) => missing.push(name),
             }
@@ -202,7 +271,7 @@ impl Columns {
             return Err(format!(
                 "header is missing column(s) {} (required: {})",
                 missing.join(", "),
-                REQUIRED.join(",")
+                required.join(",")
             ));
         }
         Ok(Columns {
@@ -211,8 +280,9 @@ impl Columns {
         })
     }
 
-    /// Parses and validates one data row.
-    fn parse_row(&self, line: &str) -> Result<Row, String> {
+    /// The trimmed fields of the required columns of `line`, in the order they were named;
+    /// checks that the row has as many fields as the header.
+    fn select<'a>(&self, line: &'a str) -> Result<Vec<&'a str>, String> {
         let fields: Vec<&str> = line.split(',').map(str::trim).collect();
         if fields.len() != self.count {
             return Err(format!(
@@ -221,18 +291,23 @@ impl Columns {
                 fields.len()
             ));
         }
-        let mut v = [0.0; REQUIRED.len()];
-        for ((slot, &i), name) in v.iter_mut().zip(&self.index).zip(REQUIRED) {
-            *slot = parse_number(name, fields[i])?;
-        }
-        let wi = unit("wi", V3::new(v[0], v[1], v[2]))?;
-        let wo = unit("wo", V3::new(v[3], v[4], v[5]))?;
-        let h = v[6];
-        if !(-1.0..=1.0).contains(&h) {
-            return Err(format!("h = {h} is outside [-1, 1]"));
-        }
-        Ok(Row { wi, wo, h })
+        Ok(self.index.iter().map(|&i| fields[i]).collect())
     }
+}
+
+/// Parses and validates the fields of [`REQUIRED`] (or of all but `h`) of one row.
+fn parse_row(fields: &[&str]) -> Result<Row, String> {
+    let mut v = [0.0; REQUIRED.len()];
+    for ((slot, field), name) in v.iter_mut().zip(fields).zip(REQUIRED) {
+        *slot = parse_number(name, field)?;
+    }
+    let wi = unit("wi", V3::new(v[0], v[1], v[2]))?;
+    let wo = unit("wo", V3::new(v[3], v[4], v[5]))?;
+    let h = v[6];
+    if !(-1.0..=1.0).contains(&h) {
+        return Err(format!("h = {h} is outside [-1, 1]"));
+    }
+    Ok(Row { wi, wo, h })
 }
 
 /// A finite number from the field of column `name`.

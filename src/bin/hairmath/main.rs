@@ -3,12 +3,17 @@
 //! - `hairmath eval` evaluates a scattering model on directions read as CSV from stdin.
 //! - `hairmath report` prints lobe energies of a few hair colours, a white-furnace check and
 //!   an indicative evaluation speed.
+//! - `hairmath lut` bakes a lookup table and writes it as raw f32 + JSON (and PNG).
+//! - `hairmath wigner3j` and `hairmath gaunt` compute Wigner 3-j symbols and Gaunt coefficients
+//!   of rows read as CSV from stdin.
 //!
 //! Errors in the input or the parameters are reported on stderr and end the program with exit
 //! status 2; argument errors found by clap keep clap's own status.
 
 mod eval;
+mod lut;
 mod report;
+mod sh;
 
 use clap::{Parser, Subcommand};
 use std::fmt;
@@ -28,7 +33,8 @@ enum Command {
     /// Evaluate a scattering model S(wi, wo, h) on directions read as CSV from stdin.
     ///
     /// Reads CSV on stdin. The first line is a header that must name the columns
-    /// wi_x, wi_y, wi_z, wo_x, wo_y, wo_z and h, in any order; other columns are passed through
+    /// wi_x, wi_y, wi_z, wo_x, wo_y, wo_z and h, in any order (h is not needed by
+    /// --model chiang-far, which ignores it); other columns are passed through
     /// unchanged, in place. Directions are in the fibre's local frame (tangent +X), point away
     /// from the fibre, and must be unit vectors within 1e-3 (they are normalised before
     /// evaluation); h must be in [-1, 1].
@@ -43,12 +49,36 @@ enum Command {
     /// stderr and exits with status 2; rows before it have already been written.
     Eval(eval::EvalArgs),
     /// Print a markdown report: lobe energies of a few hair colours, a white-furnace check of
-    /// the model and an indicative evaluation speed.
+    /// the model and an indicative evaluation speed, for the near and the far field, and the
+    /// accuracy and cost of the far field's fixed-node integrator against its reference.
     ///
     /// Lobe energies are integrals of each lobe's S_p over all incident directions (solid
     /// angle), averaged over h uniform in [-1, 1], for a viewing direction perpendicular to
-    /// the fibre. Takes a few seconds in a release build; --quick shrinks every quadrature.
+    /// the fibre. Takes about a minute in a release build; --quick shrinks every quadrature.
     Report(report::ReportArgs),
+    /// Bake a lookup table (Nguyen-Donnelly M or N textures, Gerard's N_p LUT, or a far-field
+    /// N_p table), write it as raw little-endian f32 with a JSON description (and 8-bit PNG
+    /// for 2D tables) to --out, and print the error of lookup against direct evaluation.
+    Lut(lut::LutArgs),
+    /// Wigner 3-j symbols (j1 j2 j3; m1 m2 m3) of rows read as CSV from stdin.
+    ///
+    /// The header must name the columns j1, j2, j3, m1, m2, m3 (any order, other columns
+    /// passed through, CSV conventions as for `eval`); values are integers or half-integers
+    /// written 3, -2, 1/2, -3/2 or 1.5. Writes each row with ",value" appended: the symbol
+    /// correctly rounded to f64, in shortest round-trip form; selection-rule zeros print 0.
+    /// A malformed row (not a half-integer, j and m of different kinds, negative j, ...) is
+    /// reported with its line number and exit status 2, after the rows before it.
+    #[command(name = "wigner3j")]
+    Wigner3j(sh::Wigner3jArgs),
+    /// Gaunt coefficients (integrals of three spherical harmonics) of rows read as CSV from
+    /// stdin.
+    ///
+    /// The header must name the columns l1, m1, l2, m2, l3, m3 (integers; any order, other
+    /// columns passed through, CSV conventions as for `eval`). Writes each row with ",value"
+    /// appended: the integral of Y_l1^m1 Y_l2^m2 Y_l3^m3 over the sphere for complex SH
+    /// (Condon-Shortley phase, no conjugates), or of the crate's real SH with --real; shortest
+    /// round-trip form, exact zeros print 0. Errors as for `wigner3j`.
+    Gaunt(sh::GauntArgs),
 }
 
 /// Why a subcommand failed.
@@ -98,6 +128,9 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Eval(args) => eval::run(args),
         Command::Report(args) => report::run(args),
+        Command::Lut(args) => lut::run(args),
+        Command::Wigner3j(args) => sh::run_wigner3j(args),
+        Command::Gaunt(args) => sh::run_gaunt(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

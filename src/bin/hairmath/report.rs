@@ -1,10 +1,12 @@
 //! `hairmath report`: lobe energies of a few hair colours, a white-furnace check and an
-//! indicative evaluation speed, as markdown on stdout.
+//! indicative evaluation speed of the near-field model; the same energies and furnace for the
+//! far-field model and the accuracy and cost of its fixed-node integrator against the adaptive
+//! reference; as markdown on stdout.
 
 use crate::CliError;
 use clap::Args;
 use hairmath::absorption::sigma_a_from_melanin;
-use hairmath::bcsdf::{ChiangHair, ChiangParams};
+use hairmath::bcsdf::{ChiangFarField, ChiangHair, ChiangParams, FarFieldRule};
 use hairmath::geometry::{local_direction, V3};
 use hairmath::quadrature::{gauss_legendre, SphereRule};
 use hairmath::real::Real;
@@ -39,6 +41,22 @@ const FURNACE_BETAS: [f64; 5] = [0.1, 0.3, 0.5, 0.7, 0.9];
 /// Lobe names in the order of [`ChiangHair::eval_lobes`].
 const LOBE_NAMES: [&str; 4] = ["R", "TT", "TRT", "residual"];
 
+/// Node count of the far-field model in the far-field lobe table and furnace.
+const FAR_NODES: usize = 64;
+/// Absorption of the integrator table: clear, moderate and strong.
+const INTEGRATOR_SIGMA_A: [f64; 3] = [0.0, 0.5, 10.0];
+/// Node counts of the integrator table.
+const INTEGRATOR_NODES: [usize; 5] = [8, 16, 32, 64, 128];
+/// Relative tolerance of the reference the fixed rule is compared with, and of the finer
+/// reference that estimates the reference's own error.
+const REFERENCE_TOL: f64 = 1e-11;
+const REFINED_TOL: f64 = 1e-13;
+/// Smallest beta_n whose reference is refined: below it the integrand's peaks are so narrow
+/// that rel_tol 1e-13 (even 1e-12) is under the adaptive integrator's round-off floor and it
+/// bisects panels towards its minimum width (about 20 s per call at beta_n = 0.05; minutes
+/// for some points at beta_n = 0.1 and theta_o > 0).
+const REFINE_MIN_BETA_N: f64 = 0.3;
+
 /// A sphere rule: theta panels, Gauss-Legendre order, azimuths.
 type SphereSize = (usize, usize, usize);
 
@@ -59,6 +77,14 @@ struct Settings {
     furnace_h: &'static [f64],
     /// Number of timed `eval` calls per precision.
     timing_calls: usize,
+    /// The integrator table: beta_n values, theta_o values (radians), the number of phi
+    /// values per theta_o, every how many grid points the reference is refined, and the
+    /// number of node evaluations timed per node count.
+    integrator_beta_n: &'static [f64],
+    integrator_theta_o: &'static [f64],
+    integrator_phis: usize,
+    refine_every: usize,
+    integrator_timing_nodes: usize,
 }
 
 impl Settings {
@@ -74,6 +100,11 @@ impl Settings {
                 furnace_theta_o_deg: &[0.0, 60.0],
                 furnace_h: &[-0.5, 0.7],
                 timing_calls: 10_000,
+                integrator_beta_n: &[0.05, 0.1, 0.3, 1.0],
+                integrator_theta_o: &[0.0, 1.3],
+                integrator_phis: 8,
+                refine_every: 8,
+                integrator_timing_nodes: 100_000,
             }
         } else {
             Settings {
@@ -86,6 +117,11 @@ impl Settings {
                 furnace_theta_o_deg: &[0.0, 30.0, -60.0],
                 furnace_h: &[-0.9, 0.0, 0.5, 0.95],
                 timing_calls: 1_000_000,
+                integrator_beta_n: &[0.05, 0.1, 0.3, 0.5, 1.0],
+                integrator_theta_o: &[0.0, 0.6, 1.3, 1.55],
+                integrator_phis: 32,
+                refine_every: 8,
+                integrator_timing_nodes: 5_000_000,
             }
         }
     }
@@ -99,9 +135,13 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
     if args.quick {
         writeln!(out, "\n*--quick: coarse quadrature, numbers are rough.*")?;
     }
-    lobe_table(&mut out, &settings)?;
+    let near = lobe_table(&mut out, &settings)?;
     furnace(&mut out, &settings)?;
     speed(&mut out, &settings)?;
+    writeln!(out, "\n## Far field")?;
+    far_lobe_table(&mut out, &settings, &near)?;
+    far_furnace(&mut out, &settings)?;
+    integrator_table(&mut out, &settings)?;
     out.flush()?;
     Ok(())
 }
@@ -140,10 +180,20 @@ fn lobe_energies(
     h_rule: &[(f64, f64)],
     wo: V3<f64>,
 ) -> [[f64; 3]; 4] {
+    energies(|wi, h| hair.eval_lobes(wi, wo, h), sphere, h_rule)
+}
+
+/// The integral over the sphere of `lobes(wi, h)` (per lobe and channel), averaged over h with
+/// the weights `h_rule`.
+fn energies(
+    lobes: impl Fn(V3<f64>, f64) -> [[f64; 3]; 4],
+    sphere: &SphereRule,
+    h_rule: &[(f64, f64)],
+) -> [[f64; 3]; 4] {
     let mut energy = [[0.0; 3]; 4];
     for &(h, h_weight) in h_rule {
         for &(wi, weight) in &sphere.nodes {
-            let lobes = hair.eval_lobes(wi, wo, h);
+            let lobes = lobes(wi, h);
             let w = h_weight * weight;
             for (e, lobe) in energy.iter_mut().zip(lobes) {
                 for (e, value) in e.iter_mut().zip(lobe) {
@@ -178,8 +228,9 @@ fn triple(v: [f64; 3], decimals: usize) -> String {
     )
 }
 
-/// The lobe-energy table, one row per hair colour, and its convergence check.
-fn lobe_table(out: &mut impl Write, s: &Settings) -> Result<(), CliError> {
+/// The lobe-energy table, one row per hair colour, and its convergence check. Returns the
+/// energies of each hair colour.
+fn lobe_table(out: &mut impl Write, s: &Settings) -> Result<Vec<[[f64; 3]; 4]>, CliError> {
     let sphere_rule = sphere(s.sphere);
     let h_nodes = h_rule(s.h_nodes);
     let wo = wo_at(0.0);
@@ -197,9 +248,9 @@ fn lobe_table(out: &mut impl Write, s: &Settings) -> Result<(), CliError> {
     )?;
     writeln!(out, "|---|---:|---:|---|---:|---:|---:|---:|---|")?;
     let mut first = None;
+    let mut all = Vec::new();
     for (name, eu, pheo) in HAIRS {
-        let sigma_a =
-            sigma_a_from_melanin(eu, pheo).map_err(|e| CliError::Params(e.to_string()))?;
+        let sigma_a = hair_sigma_a(eu, pheo)?;
         let model = ChiangHair::<f64>::new(&hair(BETA, sigma_a)?);
         let energy = lobe_energies(&model, &sphere_rule, &h_nodes, wo);
         let total: [f64; 3] = core::array::from_fn(|c| energy.iter().map(|e| e[c]).sum());
@@ -211,6 +262,7 @@ fn lobe_table(out: &mut impl Write, s: &Settings) -> Result<(), CliError> {
             lobes.join(" | "),
             triple(total, 4),
         )?;
+        all.push(energy);
         first.get_or_insert((name, model, energy));
     }
     if let Some((name, model, energy)) = first {
@@ -229,7 +281,12 @@ fn lobe_table(out: &mut impl Write, s: &Settings) -> Result<(), CliError> {
             s.fine_h_nodes,
         )?;
     }
-    Ok(())
+    Ok(all)
+}
+
+/// sigma_a of the given melanin concentrations.
+fn hair_sigma_a(eu: f64, pheo: f64) -> Result<[f64; 3], CliError> {
+    sigma_a_from_melanin(eu, pheo).map_err(|e| CliError::Params(e.to_string()))
 }
 
 /// The white-furnace check: with sigma_a = 0 the integral of S over the sphere is 1.
@@ -239,16 +296,9 @@ fn furnace(out: &mut impl Write, s: &Settings) -> Result<(), CliError> {
     for beta in FURNACE_BETAS {
         let model = ChiangHair::<f64>::new(&hair(beta, [0.0; 3])?);
         let rule = if beta < 0.2 { &sharp } else { &smooth };
-        let mut worst = 0.0_f64;
-        for &theta_o in s.furnace_theta_o_deg {
-            for &h in s.furnace_h {
-                let wo = wo_at(theta_o);
-                let error = rule.integrate(|wi| model.eval(wi, wo, h)[1]) - 1.0;
-                if error.abs() > worst.abs() {
-                    worst = error;
-                }
-            }
-        }
+        let worst = worst_furnace(rule, s.furnace_theta_o_deg, s.furnace_h, |wi, wo, h| {
+            model.eval(wi, wo, h)[1]
+        });
         cells.push(format!("beta {beta}: {worst:+.1e}"));
     }
     writeln!(
@@ -265,6 +315,27 @@ fn furnace(out: &mut impl Write, s: &Settings) -> Result<(), CliError> {
         s.furnace_sphere_sharp
     )?;
     Ok(())
+}
+
+/// The furnace error (integral over `rule` of `f(wi, wo, h)` minus 1) of largest magnitude,
+/// over wo at each theta_o (degrees) and each h.
+fn worst_furnace(
+    rule: &SphereRule,
+    theta_o_deg: &[f64],
+    hs: &[f64],
+    f: impl Fn(V3<f64>, V3<f64>, f64) -> f64,
+) -> f64 {
+    let mut worst = 0.0_f64;
+    for &theta_o in theta_o_deg {
+        for &h in hs {
+            let wo = wo_at(theta_o);
+            let error = rule.integrate(|wi| f(wi, wo, h)) - 1.0;
+            if error.abs() > worst.abs() {
+                worst = error;
+            }
+        }
+    }
+    worst
 }
 
 /// The evaluation-speed line for f64 and f32.
@@ -321,4 +392,277 @@ fn ns_per_eval<R: Real>(params: &ChiangParams, calls: usize) -> f64 {
         black_box(model.eval(black_box(wi), black_box(wo), black_box(h)));
     }
     start.elapsed().as_nanos() as f64 / calls.max(1) as f64
+}
+
+/// The far-field model of the report's tilt and index with `FAR_NODES` nodes.
+fn far_model(beta_n: f64, sigma_a: [f64; 3]) -> Result<ChiangFarField<f64>, CliError> {
+    let params = ChiangParams::new(BETA, beta_n, ALPHA_DEG.to_radians(), ETA, sigma_a)
+        .map_err(|e| CliError::Params(e.to_string()))?;
+    let rule =
+        FarFieldRule::gauss_legendre(FAR_NODES).map_err(|e| CliError::Params(e.to_string()))?;
+    Ok(ChiangFarField::new(ChiangHair::new(&params), &rule))
+}
+
+/// The far-field lobe-energy table, one row per hair colour, with the largest difference
+/// from the near-field energies `near` (same order of hair colours).
+fn far_lobe_table(
+    out: &mut impl Write,
+    s: &Settings,
+    near: &[[[f64; 3]; 4]],
+) -> Result<(), CliError> {
+    let sphere_rule = sphere(s.sphere);
+    let wo = wo_at(0.0);
+    writeln!(
+        out,
+        "\n### Far-field lobe energies\n\n`ChiangFarField` ({FAR_NODES} Gauss-Legendre nodes in \
+         gamma = asin(h)), same hairs, roughness and wo as the near-field table: energy of \
+         lobe p = integral over all wi of the far-field S_p(wi, wo). Lobe columns are the green \
+         channel; `vs near` is the largest difference from the near-field table over lobes and \
+         channels (the two differ only by the h quadrature).\n"
+    )?;
+    writeln!(
+        out,
+        "| hair | {} | total (R, G, B) | vs near |",
+        LOBE_NAMES.join(" | ")
+    )?;
+    writeln!(out, "|---|---:|---:|---:|---:|---|---:|")?;
+    for ((name, eu, pheo), near) in HAIRS.iter().zip(near) {
+        let model = far_model(BETA, hair_sigma_a(*eu, *pheo)?)?;
+        let energy = energies(
+            |wi, _| model.eval_lobes(wi, wo),
+            &sphere_rule,
+            &[(0.0, 1.0)],
+        );
+        let total: [f64; 3] = core::array::from_fn(|c| energy.iter().map(|e| e[c]).sum());
+        let lobes: Vec<String> = energy.iter().map(|e| format!("{:.4}", e[1])).collect();
+        writeln!(
+            out,
+            "| {name} | {} | {} | {:.1e} |",
+            lobes.join(" | "),
+            triple(total, 4),
+            max_difference(&energy, near),
+        )?;
+    }
+    Ok(())
+}
+
+/// The far-field white-furnace check (sigma_a = 0, beta_m = beta_n = beta).
+fn far_furnace(out: &mut impl Write, s: &Settings) -> Result<(), CliError> {
+    let (smooth, sharp) = (sphere(s.furnace_sphere), sphere(s.furnace_sphere_sharp));
+    let mut cells = Vec::new();
+    for beta in FURNACE_BETAS {
+        let params = hair(beta, [0.0; 3])?;
+        let rule =
+            FarFieldRule::gauss_legendre(FAR_NODES).map_err(|e| CliError::Params(e.to_string()))?;
+        let model = ChiangFarField::new(ChiangHair::new(&params), &rule);
+        let sphere_rule = if beta < 0.2 { &sharp } else { &smooth };
+        let worst = worst_furnace(sphere_rule, s.furnace_theta_o_deg, &[0.0], |wi, wo, _| {
+            model.eval(wi, wo)[1]
+        });
+        cells.push(format!("beta {beta}: {worst:+.1e}"));
+    }
+    writeln!(
+        out,
+        "\n### Far-field white furnace\n\nsigma_a = 0: integral of the far-field S over the \
+         sphere minus 1, worst over theta_o in {:?} deg (same sphere rules as above; the fixed \
+         rule's weights sum to 1, so what remains is the sphere quadrature's error):\n\n{}",
+        s.furnace_theta_o_deg,
+        cells.join("; ")
+    )?;
+    Ok(())
+}
+
+/// A point of the integrator grid: (sin theta_o, cos theta_o, phi).
+type GridPoint = (f64, f64, f64);
+
+/// `N_p A_p` per lobe and channel.
+type Azimuthal = [[f64; 3]; 4];
+
+/// The grid of the integrator table: `phis` midpoint azimuths in (-pi, pi) for each theta_o,
+/// grouped by theta_o.
+fn integrator_grid(theta_o: &[f64], phis: usize) -> Vec<GridPoint> {
+    let tau = std::f64::consts::TAU;
+    let mut grid = Vec::with_capacity(theta_o.len() * phis);
+    for &t in theta_o {
+        for k in 0..phis {
+            let phi = -std::f64::consts::PI + (k as f64 + 0.5) * tau / phis as f64;
+            grid.push((t.sin(), t.cos(), phi));
+        }
+    }
+    grid
+}
+
+/// The reference `N_p A_p` at every grid point with relative tolerance `tol`, and the mean
+/// wall-clock microseconds per call.
+fn reference_values(hair: &ChiangHair<f64>, grid: &[GridPoint], tol: f64) -> (Vec<Azimuthal>, f64) {
+    let start = Instant::now();
+    let values: Vec<Azimuthal> = grid
+        .iter()
+        .map(|&(sin_o, cos_o, phi)| hair.far_field_azimuthal_reference(sin_o, cos_o, phi, tol).0)
+        .collect();
+    let us = start.elapsed().as_secs_f64() * 1e6 / grid.len().max(1) as f64;
+    (values, us)
+}
+
+/// For each theta_o group of `phis` grid points, the largest `|N_p|` over phi of each lobe and
+/// channel (of the reference `values`), repeated for every point of the group.
+fn peaks(values: &[Azimuthal], phis: usize) -> Vec<Azimuthal> {
+    let mut out = Vec::with_capacity(values.len());
+    for group in values.chunks(phis) {
+        let mut peak = [[0.0_f64; 3]; 4];
+        for value in group {
+            for (pk, v) in peak.iter_mut().flatten().zip(value.iter().flatten()) {
+                *pk = pk.max(v.abs());
+            }
+        }
+        out.extend(std::iter::repeat_n(peak, group.len()));
+    }
+    out
+}
+
+/// Smallest peak that takes part in the error statistics (lobes absorbed below it carry no
+/// energy worth measuring).
+const PEAK_FLOOR: f64 = 1e-12;
+
+/// Max and mean over points, lobes and channels of `|approx - reference| / peak`, skipping
+/// (lobe, channel) pairs whose peak is below [`PEAK_FLOOR`].
+fn error_stats(
+    approx: impl Iterator<Item = (usize, Azimuthal)>,
+    reference: &[Azimuthal],
+    peak: &[Azimuthal],
+) -> (f64, f64) {
+    let (mut worst, mut sum, mut count) = (0.0_f64, 0.0, 0usize);
+    for (i, a) in approx {
+        let pairs = a.iter().flatten().zip(reference[i].iter().flatten());
+        for ((a, r), p) in pairs.zip(peak[i].iter().flatten()) {
+            if *p > PEAK_FLOOR {
+                let e = (a - r).abs() / p;
+                worst = worst.max(e);
+                sum += e;
+                count += 1;
+            }
+        }
+    }
+    (worst, sum / count.max(1) as f64)
+}
+
+/// The fixed rule's `N_p A_p` with `n` nodes at every grid point.
+fn fast_values(
+    hair: ChiangHair<f64>,
+    n: usize,
+    grid: &[GridPoint],
+) -> Result<Vec<Azimuthal>, CliError> {
+    let rule = FarFieldRule::gauss_legendre(n).map_err(|e| CliError::Params(e.to_string()))?;
+    let far = ChiangFarField::new(hair, &rule);
+    Ok(grid
+        .iter()
+        .map(|&(s, c, phi)| far.azimuthal(s, c, phi).0)
+        .collect())
+}
+
+/// One row of the integrator table: for `beta_n`, the reference's cost and refinement and the
+/// fixed rule's (max, mean) error for each node count.
+fn integrator_row(beta_n: f64, grid: &[GridPoint], s: &Settings) -> Result<String, CliError> {
+    let params = ChiangParams::new(
+        BETA,
+        beta_n,
+        ALPHA_DEG.to_radians(),
+        ETA,
+        INTEGRATOR_SIGMA_A,
+    )
+    .map_err(|e| CliError::Params(e.to_string()))?;
+    let hair = ChiangHair::<f64>::new(&params);
+    let (reference, us) = reference_values(&hair, grid, REFERENCE_TOL);
+    let peak = peaks(&reference, s.integrator_phis);
+    let refinement = if beta_n >= REFINE_MIN_BETA_N {
+        refinement(&hair, grid, &reference, &peak, s.refine_every)
+    } else {
+        "n/a".to_string()
+    };
+    let mut cells = vec![format!("{beta_n}"), format!("{us:.0}"), refinement];
+    for n in INTEGRATOR_NODES {
+        let fast = fast_values(hair, n, grid)?;
+        let (worst, mean) = error_stats(fast.into_iter().enumerate(), &reference, &peak);
+        cells.push(format!("{worst:.1e} / {mean:.1e}"));
+    }
+    Ok(format!("| {} |", cells.join(" | ")))
+}
+
+/// The reference's own error: max over every `every`-th grid point of its difference from the
+/// reference at [`REFINED_TOL`], relative to the peaks, formatted.
+fn refinement(
+    hair: &ChiangHair<f64>,
+    grid: &[GridPoint],
+    reference: &[Azimuthal],
+    peak: &[Azimuthal],
+    every: usize,
+) -> String {
+    let subset: Vec<usize> = (0..grid.len()).step_by(every).collect();
+    let points: Vec<GridPoint> = subset.iter().map(|&i| grid[i]).collect();
+    let (refined, _) = reference_values(hair, &points, REFINED_TOL);
+    let (worst, _) = error_stats(subset.into_iter().zip(refined), reference, peak);
+    format!("{worst:.0e}")
+}
+
+/// Mean wall-clock nanoseconds of one fixed-rule `N_p` evaluation (`ChiangFarField::azimuthal`,
+/// all lobes and channels) with `n` nodes, over about `node_evals / n` calls cycling over `grid`.
+fn ns_per_azimuthal(n: usize, grid: &[GridPoint], node_evals: usize) -> Result<f64, CliError> {
+    let params = ChiangParams::new(BETA, BETA, ALPHA_DEG.to_radians(), ETA, INTEGRATOR_SIGMA_A)
+        .map_err(|e| CliError::Params(e.to_string()))?;
+    let rule = FarFieldRule::gauss_legendre(n).map_err(|e| CliError::Params(e.to_string()))?;
+    let far = ChiangFarField::new(ChiangHair::<f64>::new(&params), &rule);
+    let calls = (node_evals / n).max(grid.len()).max(1);
+    let start = Instant::now();
+    for k in 0..calls {
+        let (sin_o, cos_o, phi) = grid[k % grid.len()];
+        black_box(far.azimuthal(black_box(sin_o), black_box(cos_o), black_box(phi)));
+    }
+    Ok(start.elapsed().as_nanos() as f64 / calls as f64)
+}
+
+/// The integrator table: accuracy and cost of the fixed rule against the adaptive reference.
+fn integrator_table(out: &mut impl Write, s: &Settings) -> Result<(), CliError> {
+    let grid = integrator_grid(s.integrator_theta_o, s.integrator_phis);
+    writeln!(
+        out,
+        "\n### Far-field integrator\n\nError of the fixed N-node rule's N_p \
+         (`ChiangFarField::azimuthal`) against the adaptive reference \
+         (`far_field_azimuthal_reference`, rel_tol {REFERENCE_TOL:e}), relative to the peak over \
+         phi of each lobe's N_p: max / mean over lobes R, TT, TRT, residual, channels with \
+         sigma_a = {INTEGRATOR_SIGMA_A:?}, {} phi per theta_o and theta_o in {:?} rad (lobes \
+         whose peak is below {PEAK_FLOOR:e} are skipped). beta_m = {BETA}, alpha = {ALPHA_DEG} \
+         deg, eta = {ETA}. `ref us`: microseconds per reference call. `ref refinement`: the \
+         reference's own error, its max difference (same measure) from rel_tol {REFINED_TOL:e} \
+         on every {}th grid point; n/a below beta_n = {REFINE_MIN_BETA_N}, where the peaks are \
+         so narrow that rel_tol 1e-12 and below sits under the adaptive integrator's round-off \
+         floor (it bisects towards its minimum panel width, ~20 s per call). `ns per fast N_p`: \
+         one `azimuthal` call (all lobes and channels), indicative.\n",
+        s.integrator_phis, s.integrator_theta_o, s.refine_every,
+    )?;
+    let heads: Vec<String> = INTEGRATOR_NODES
+        .iter()
+        .map(|n| format!("N = {n}"))
+        .collect();
+    writeln!(
+        out,
+        "| beta_n | ref us | ref refinement | {} |",
+        heads.join(" | ")
+    )?;
+    writeln!(
+        out,
+        "|---:|---:|---:|{}",
+        "---:|".repeat(INTEGRATOR_NODES.len())
+    )?;
+    for &beta_n in s.integrator_beta_n {
+        writeln!(out, "{}", integrator_row(beta_n, &grid, s)?)?;
+    }
+    let mut times = Vec::new();
+    for n in INTEGRATOR_NODES {
+        times.push(format!(
+            "{:.0}",
+            ns_per_azimuthal(n, &grid, s.integrator_timing_nodes)?
+        ));
+    }
+    writeln!(out, "| ns per fast N_p | | | {} |", times.join(" | "))?;
+    Ok(())
 }

@@ -1,0 +1,86 @@
+//! Lookup tables: a small table type with (bi/tri)linear lookup, bakers for the tables the
+//! real-time hair models use, the measured error of lookup against direct evaluation, and file
+//! output (raw little-endian f32 with a JSON description, and 8-bit PNG with the `cli` feature).
+//!
+//! # Tables ([`Table`])
+//!
+//! f32 samples on a regular grid of 1 to 3 [`Axis`] values, several channels per grid point.
+//! Samples sit at the axis **endpoints** (sample `i` of `n` at `min + i (max - min) / (n - 1)`),
+//! addressing clamps to the edge, and [`Table::lookup`] interpolates linearly along each axis.
+//! The weight computation [`axis_cell`] is generic over [`crate::real::Real`] so it traces to
+//! shader code; a GPU sampling the same data as a texture with texel-centre addressing uses
+//! `u = (0.5 + t (n - 1)) / n` with `t = (x - min) / (max - min)`.
+//!
+//! # Bakers ([`Baker`])
+//!
+//! All evaluation is f64, single-threaded and deterministic, so a table regenerates bit for bit
+//! from its parameters.
+//!
+//! | baker | axes (0, 1, 2) | channels |
+//! | --- | --- | --- |
+//! | [`NguyenM`] | sin theta_i, sin theta_o in [-1, 1] | M_R, M_TT, M_TRT, cos theta_d |
+//! | [`NguyenN`] | cos phi in [-1, 1], cos theta_d in [0, 1] | N_TT (r, g, b), N_R, N_TRT (r, g, b) |
+//! | [`GerardN`] | phi in [0, pi], theta_d in [0, theta_d max] | N_R, N_TT, N_TRT (sigma_a = 0) |
+//! | [`FarFieldN`] | phi in [0, pi], theta_o in [0, pi/2], beta_n | A_p N_p of R, TT, TRT, TRRT+ (r, g, b) |
+//!
+//! Each baker's documentation states exactly what its channels hold; [`lookup_error`] and
+//! [`error_vs_resolution`] measure lookup against direct evaluation at off-grid points.
+//!
+//! # Files ([`write_raw`], [`write_png`])
+//!
+//! `NAME.f32` holds the samples as little-endian f32 in the layout of [`Table`];
+//! `NAME.f32.json` describes it (kind, axes with names, ranges and sizes, channels, parameters,
+//! the 8-bit scale of each channel, generator version). An 8-bit PNG (RGBA8) stores
+//! `round(255 clamp(value / scale, 0, 1))` per channel, `scale` from the JSON, so
+//! `value ~ texel / 255 * scale`.
+
+mod bake;
+mod io;
+mod table;
+
+pub use bake::{
+    bake, error_vs_resolution, lookup_error, Baker, ErrorStats, FarFieldN, GerardN, NguyenM,
+    NguyenN, FAR_FIELD_CHANNELS,
+};
+#[cfg(feature = "cli")]
+pub use io::write_png;
+pub use io::{json_description, quantize_rgba8, raw_bytes, read_raw, write_raw, GENERATOR};
+pub use table::{
+    axis_cell, Axis, ParamValue, Table, TableMeta, MAX_AXES, MAX_AXIS_SIZE, MAX_CHANNELS,
+    MAX_VALUES,
+};
+
+use crate::error::ParamError;
+
+/// Why a table could not be built, looked up or written.
+#[derive(Debug, thiserror::Error)]
+pub enum LutError {
+    /// An invalid axis.
+    #[error("axis {name} ({min} to {max}, {size} samples) is not allowed: {reason}")]
+    Axis {
+        /// The axis name.
+        name: String,
+        /// The given start of the range.
+        min: f64,
+        /// The given end of the range.
+        max: f64,
+        /// The given number of samples.
+        size: usize,
+        /// What is wrong.
+        reason: &'static str,
+    },
+    /// Counts that do not fit together (axes, channels, sizes, coordinates, data length).
+    #[error("table shape: {0}")]
+    Shape(String),
+    /// An invalid model parameter.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    /// Reading or writing a file failed.
+    #[error("I/O error on {path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+}
