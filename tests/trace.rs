@@ -32,6 +32,7 @@ use hairmath::real::{horner, pi, safe_asin, safe_sqrt, trace, wrap_angle, Graph,
 use hairmath::sh::basis::{eval_sh, eval_sh_into};
 use hairmath::sh::product::{product, triple_product_integral, ProductPlan};
 use hairmath::sh::rotation::{rotate_band1, rotate_band2, rotate_bands012, rotate_zonal_into};
+use hairmath::lut::axis_cell;
 use std::collections::BTreeSet;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
@@ -655,6 +656,14 @@ traced_tests! {
         });
         case!("attenuations", scalars(&[UNIT, ETA, SIN, UNIT]), |x| {
             attenuations(x[0], x[1], x[2], x[3]).to_vec()
+        });
+    }
+    lut_axis_cell ["axis_cell"] {
+        // Inside, at and beyond both ends of a 17-sample axis over [-1.5, 2.5].
+        let inputs = scalars(&[arg(-3.0, 4.0, &[-1.5, 2.5, -3.0, 4.0, 0.5])]);
+        case!("axis_cell", inputs, |x| {
+            let (i0, f) = axis_cell(x[0], -1.5, 2.5, 17);
+            vec![i0, f]
         });
     }
     azimuthal_exit_angle ["exit_angle", "refracted_offset", "exit_angle_of_offset"] {
