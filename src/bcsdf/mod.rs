@@ -8,4 +8,6 @@ pub use batch::{batch_model, eval_batch, pdf_batch, BatchLengthError};
 pub use chiang::{
     logistic_scale, longitudinal_variance, ChiangHair, ChiangParams, HairSample, CHIANG_CONSTANTS,
 };
-pub use far_field::{ChiangFarField, FarFieldReference, FarFieldRule, MAX_FAR_FIELD_NODES};
+pub use far_field::{
+    ChiangFarField, FarFieldReference, FarFieldRule, FAR_FIELD_ERROR_BOUNDS, MAX_FAR_FIELD_NODES,
+};
