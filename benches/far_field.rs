@@ -47,7 +47,12 @@ fn bench_np(c: &mut Criterion) {
     });
     for nodes in [16, 32, 64] {
         let rule = FarFieldRule::gauss_legendre(nodes).expect("valid node count");
-        fast(&mut g, &format!("f64 {nodes} nodes"), &ChiangFarField::new(hair, &rule), &xs);
+        fast(
+            &mut g,
+            &format!("f64 {nodes} nodes"),
+            &ChiangFarField::new(hair, &rule),
+            &xs,
+        );
         let far32 = ChiangFarField::new(ChiangHair::<f32>::new(&params()), &rule);
         fast(&mut g, &format!("f32 {nodes} nodes"), &far32, &xs);
     }
@@ -60,7 +65,10 @@ fn fast<R: Real>(
     far: &ChiangFarField<R>,
     xs: &[(f64, f64, f64)],
 ) {
-    let xs: Vec<(R, R, R)> = xs.iter().map(|&(s, c, p)| (R::c(s), R::c(c), R::c(p))).collect();
+    let xs: Vec<(R, R, R)> = xs
+        .iter()
+        .map(|&(s, c, p)| (R::c(s), R::c(c), R::c(p)))
+        .collect();
     g.bench_function(BenchmarkId::new("fast", name), |b| {
         b.iter(|| {
             for &(s, co, phi) in &xs {

@@ -159,7 +159,11 @@ pub fn adaptive<const N: usize>(
         }
         sum
     };
-    let mut edges: Vec<f64> = breakpoints.iter().copied().filter(|x| *x > a && *x < b).collect();
+    let mut edges: Vec<f64> = breakpoints
+        .iter()
+        .copied()
+        .filter(|x| *x > a && *x < b)
+        .collect();
     edges.extend([a, b]);
     edges.sort_by(f64::total_cmp);
     edges.dedup();
@@ -181,11 +185,27 @@ pub fn adaptive<const N: usize>(
         let (left, right) = (panel(lo, mid), panel(mid, hi));
         let diff = (0..N).fold(0.0_f64, |m, k| m.max((left[k] + right[k] - whole[k]).abs()));
         let size = (0..N).fold(0.0_f64, |m, k| m.max((left[k] + right[k]).abs()));
-        let allowance = (tol * (hi - lo) / (b - a)).max(1e-14 * size).max(f64::MIN_POSITIVE);
-        let ratio = if hi - lo < min_width { 0.0 } else { diff / allowance };
-        Panel { lo, hi, left, right, diff, ratio }
+        let allowance = (tol * (hi - lo) / (b - a))
+            .max(1e-14 * size)
+            .max(f64::MIN_POSITIVE);
+        let ratio = if hi - lo < min_width {
+            0.0
+        } else {
+            diff / allowance
+        };
+        Panel {
+            lo,
+            hi,
+            left,
+            right,
+            diff,
+            ratio,
+        }
     };
-    let mut heap: BinaryHeap<Panel<N>> = stack.into_iter().map(|(lo, hi, w)| split(lo, hi, w)).collect();
+    let mut heap: BinaryHeap<Panel<N>> = stack
+        .into_iter()
+        .map(|(lo, hi, w)| split(lo, hi, w))
+        .collect();
     for _ in 0..MAX_BISECTIONS {
         match heap.peek() {
             Some(worst) if worst.ratio > 1.0 => {}
@@ -198,8 +218,8 @@ pub fn adaptive<const N: usize>(
     }
     let (mut total, mut error) = ([0.0; N], 0.0);
     for panel in heap {
-        for k in 0..N {
-            total[k] += panel.left[k] + panel.right[k];
+        for ((t, l), r) in total.iter_mut().zip(panel.left).zip(panel.right) {
+            *t += l + r;
         }
         error += panel.diff;
     }

@@ -3,7 +3,9 @@
 //! refinement, the fast integrator against the reference, the sampler against the pdf, and the
 //! zero-roughness limit against Marschner 2003's root sum.
 
-use hairmath::azimuthal::{marschner_attenuation, marschner_exit_angle, marschner_np, trimmed_logistic};
+use hairmath::azimuthal::{
+    marschner_attenuation, marschner_exit_angle, marschner_np, trimmed_logistic,
+};
 use hairmath::bcsdf::{logistic_scale, ChiangFarField, ChiangHair, ChiangParams, FarFieldRule};
 use hairmath::fresnel::bravais_eta_perpendicular;
 use hairmath::geometry::{local_direction, V3};
@@ -33,7 +35,10 @@ fn far_field_white_furnace_is_one() {
         let sphere = if bm < 0.2 { &fine } else { &coarse };
         for wo in [dir(0.0, 0.4), dir(-60.0, 2.0), dir(85.0, 0.0)] {
             let albedo = sphere.integrate(|wi| far.eval(wi, wo)[2]);
-            assert!((albedo - 1.0).abs() < 1e-3, "beta {bm} {bn} wo {wo:?}: {albedo}");
+            assert!(
+                (albedo - 1.0).abs() < 1e-3,
+                "beta {bm} {bn} wo {wo:?}: {albedo}"
+            );
         }
     }
 }
@@ -55,10 +60,16 @@ fn reference_integrator_converges_to_1e_9() {
                         (coarse, fine, err)
                     })
                     .collect();
-                let peak = values.iter().flat_map(|v| v.1.iter().flatten().copied()).fold(0.0, f64::max);
+                let peak = values
+                    .iter()
+                    .flat_map(|v| v.1.iter().flatten().copied())
+                    .fold(0.0, f64::max);
                 for (coarse, fine, err) in &values {
                     for (a, b) in coarse.iter().flatten().zip(fine.iter().flatten()) {
-                        assert!((a - b).abs() <= 1e-9 * peak, "beta_n {bn} theta {theta}: {a} vs {b}");
+                        assert!(
+                            (a - b).abs() <= 1e-9 * peak,
+                            "beta_n {bn} theta {theta}: {a} vs {b}"
+                        );
                     }
                     assert!(err.is_finite() && *err >= 0.0);
                 }
@@ -77,12 +88,21 @@ fn fast_integrator_meets_its_documented_bound() {
         let hair = ChiangHair::<f64>::new(&params(0.3, bn, [0.0, 0.5, 10.0]));
         let far = ChiangFarField::new(hair, &FarFieldRule::gauss_legendre(nodes).unwrap());
         let mut worst = 0.0_f64;
-        for &theta in &[0.0_f64, 1.3, 1.5707] {
+        for &theta in &[0.0_f64, 1.3, FRAC_PI_2 - 1e-4] {
             let (s, c) = (theta.sin(), theta.cos());
-            let mut phis: Vec<f64> = (0..24).map(|k| -PI + (k as f64 + 0.5) * PI / 12.0).collect();
+            let mut phis: Vec<f64> = (0..24)
+                .map(|k| -PI + (k as f64 + 0.5) * PI / 12.0)
+                .collect();
             phis.extend([0.0, PI, -PI]);
-            let pairs: Vec<_> =
-                phis.iter().map(|&phi| (far.azimuthal(s, c, phi).0, hair.far_field_azimuthal_reference(s, c, phi, 1e-10).0)).collect();
+            let pairs: Vec<_> = phis
+                .iter()
+                .map(|&phi| {
+                    (
+                        far.azimuthal(s, c, phi).0,
+                        hair.far_field_azimuthal_reference(s, c, phi, 1e-10).0,
+                    )
+                })
+                .collect();
             for p in 0..3 {
                 for ch in 0..3 {
                     let peak = pairs.iter().map(|(_, r)| r[p][ch]).fold(0.0, f64::max);
@@ -92,7 +112,10 @@ fn fast_integrator_meets_its_documented_bound() {
                     for (fast, reference) in &pairs {
                         let err = (fast[p][ch] - reference[p][ch]).abs() / peak;
                         worst = worst.max(err);
-                        assert!(err <= bound, "beta_n {bn}, {nodes} nodes, theta {theta}, lobe {p}: {err:.3e}");
+                        assert!(
+                            err <= bound,
+                            "beta_n {bn}, {nodes} nodes, theta {theta}, lobe {p}: {err:.3e}"
+                        );
                     }
                 }
             }
@@ -139,7 +162,9 @@ fn roughness_integrated_np_tends_to_marschner_as_roughness_vanishes() {
     let rough = |beta_n: f64, phi: f64, exit: &dyn Fn(f64) -> f64| {
         let s = logistic_scale(beta_n);
         // Breakpoints where the logistic peaks (exit(gamma) = phi mod 2 pi), found on a scan.
-        let grid: Vec<f64> = (0..=256).map(|k| -FRAC_PI_2 + k as f64 * PI / 256.0).collect();
+        let grid: Vec<f64> = (0..=256)
+            .map(|k| -FRAC_PI_2 + k as f64 * PI / 256.0)
+            .collect();
         let residual = |g: f64| wrap_angle(phi - exit(g));
         let breaks: Vec<f64> = grid
             .windows(2)
@@ -174,10 +199,18 @@ fn roughness_integrated_np_tends_to_marschner_as_roughness_vanishes() {
         v[0]
     };
     let n = 512;
-    let phis: Vec<f64> = (0..n).map(|k| -PI + (k as f64 + 0.5) * 2.0 * PI / n as f64).collect();
-    let marschner: Vec<f64> = phis.iter().map(|&phi| marschner_np(p, phi, 0.0, eta, [0.0; 3], None)[0]).collect();
+    let phis: Vec<f64> = (0..n)
+        .map(|k| -PI + (k as f64 + 0.5) * 2.0 * PI / n as f64)
+        .collect();
+    let marschner: Vec<f64> = phis
+        .iter()
+        .map(|&phi| marschner_np(p, phi, 0.0, eta, [0.0; 3], None)[0])
+        .collect();
     let l1 = |beta_n: f64, exit: &dyn Fn(f64) -> f64| {
-        phis.iter().zip(&marschner).map(|(&phi, m)| (rough(beta_n, phi, exit) - m).abs()).sum::<f64>()
+        phis.iter()
+            .zip(&marschner)
+            .map(|(&phi, m)| (rough(beta_n, phi, exit) - m).abs())
+            .sum::<f64>()
             * (2.0 * PI / n as f64)
     };
     // Down to s = 0.0057: the 512-point phi grid (spacing 0.012) resolves the difference, whose
@@ -186,10 +219,21 @@ fn roughness_integrated_np_tends_to_marschner_as_roughness_vanishes() {
     let cubic: Vec<f64> = betas.iter().map(|&b| l1(b, &cubic_phi)).collect();
     let exact: Vec<f64> = betas.iter().map(|&b| l1(b, &exact_phi)).collect();
     for (k, b) in betas.iter().enumerate() {
-        println!("beta_n {b}: s = {:.4}, L1 to Marschner: cubic exit {:.3e}, exact exit {:.3e}", logistic_scale(*b), cubic[k], exact[k]);
+        println!(
+            "beta_n {b}: s = {:.4}, L1 to Marschner: cubic exit {:.3e}, exact exit {:.3e}",
+            logistic_scale(*b),
+            cubic[k],
+            exact[k]
+        );
     }
     // Monotone convergence with the cubic, at least 100x between beta_n = 0.3 and 0.03.
-    assert!(cubic.windows(2).all(|w| w[1] < w[0]) && cubic[2] < 0.01 * cubic[0], "{cubic:?}");
+    assert!(
+        cubic.windows(2).all(|w| w[1] < w[0]) && cubic[2] < 0.01 * cubic[0],
+        "{cubic:?}"
+    );
     // With the exact exit angle the distance plateaus at the cubic's own error.
-    assert!(exact[2] > 0.5 * exact[1] && exact[2] > 10.0 * cubic[2], "{exact:?} vs {cubic:?}");
+    assert!(
+        exact[2] > 0.5 * exact[1] && exact[2] > 10.0 * cubic[2],
+        "{exact:?} vs {cubic:?}"
+    );
 }

@@ -28,11 +28,11 @@ use hairmath::lobe::{
     deon_lobe, deon_lobe_sample_cos_theta, gaussian_lobe, hg_gerard_printed, DeonLobe,
     HenyeyGreenstein,
 };
+use hairmath::lut::axis_cell;
 use hairmath::real::{horner, pi, safe_asin, safe_sqrt, trace, wrap_angle, Graph, Real, Traced};
 use hairmath::sh::basis::{eval_sh, eval_sh_into};
 use hairmath::sh::product::{product, triple_product_integral, ProductPlan};
 use hairmath::sh::rotation::{rotate_band1, rotate_band2, rotate_bands012, rotate_zonal_into};
-use hairmath::lut::axis_cell;
 use std::collections::BTreeSet;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;

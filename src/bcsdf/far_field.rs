@@ -59,16 +59,21 @@ impl FarFieldRule {
     /// # Errors
     /// `n` outside 1..=512.
     pub fn gauss_legendre(n: usize) -> Result<Self, ParamError> {
-        ParamError::check("nodes", n as f64, "the node count must be in 1..=512", |v| {
-            (1.0..=MAX_FAR_FIELD_NODES as f64).contains(&v)
-        })?;
+        ParamError::check(
+            "nodes",
+            n as f64,
+            "the node count must be in 1..=512",
+            |v| (1.0..=MAX_FAR_FIELD_NODES as f64).contains(&v),
+        )?;
         let half_pi = core::f64::consts::FRAC_PI_2;
         let raw: Vec<(f64, f64)> = gauss_legendre(n)
             .into_iter()
             .map(|(x, w)| (half_pi * x, half_pi * w * (half_pi * x).cos() * 0.5))
             .collect();
         let total: f64 = raw.iter().map(|&(_, w)| w).sum();
-        Ok(FarFieldRule { nodes: raw.into_iter().map(|(g, w)| (g.sin(), w / total)).collect() })
+        Ok(FarFieldRule {
+            nodes: raw.into_iter().map(|(g, w)| (g.sin(), w / total)).collect(),
+        })
     }
 
     /// The (h_k, P_k) pairs.
@@ -88,7 +93,14 @@ pub struct ChiangFarField<R> {
 impl<R: Real> ChiangFarField<R> {
     /// The far field of `hair` integrated with `rule`.
     pub fn new(hair: ChiangHair<R>, rule: &FarFieldRule) -> Self {
-        ChiangFarField { hair, nodes: rule.nodes.iter().map(|&(h, p)| (R::c(h), R::c(p))).collect() }
+        ChiangFarField {
+            hair,
+            nodes: rule
+                .nodes
+                .iter()
+                .map(|&(h, p)| (R::c(h), R::c(p)))
+                .collect(),
+        }
     }
 
     /// The near-field model this averages.
@@ -115,7 +127,9 @@ impl<R: Real> ChiangFarField<R> {
     }
 
     fn terms(&self, wi: V3<R>, wo: V3<R>) -> LobeTerms<R> {
-        self.hair.terms_with(wi, wo, |sin_o, cos_o, phi| self.azimuthal(sin_o, cos_o, phi))
+        self.hair.terms_with(wi, wo, |sin_o, cos_o, phi| {
+            self.azimuthal(sin_o, cos_o, phi)
+        })
     }
 
     /// `S(wi, wo)` per channel, for unit directions in the local frame (tangent +X). No cosine
@@ -146,7 +160,11 @@ impl<R: Real> ChiangFarField<R> {
         }
         let wi = self.hair.sample_direction(wo, h, u, uc);
         let terms = self.terms(wi, wo);
-        HairSample { wi, value: terms.value(), pdf: terms.pdf() }
+        HairSample {
+            wi,
+            value: terms.value(),
+            pdf: terms.pdf(),
+        }
     }
 }
 
@@ -232,7 +250,10 @@ impl ChiangHair<f64> {
             rel_tol,
             1e-300,
         );
-        (core::array::from_fn(|p| [flat[3 * p], flat[3 * p + 1], flat[3 * p + 2]]), error)
+        (
+            core::array::from_fn(|p| [flat[3 * p], flat[3 * p + 1], flat[3 * p + 2]]),
+            error,
+        )
     }
 
     /// The far-field S at (wi, wo) with the reference integrator (see
@@ -245,6 +266,11 @@ impl ChiangHair<f64> {
             an: azimuthal,
             wn: [0.0; LOBES],
         };
-        FarFieldReference { lobes: terms.per_lobe(), value: terms.value(), azimuthal, error }
+        FarFieldReference {
+            lobes: terms.per_lobe(),
+            value: terms.value(),
+            azimuthal,
+            error,
+        }
     }
 }

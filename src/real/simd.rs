@@ -233,7 +233,7 @@ mod tests {
             f32::NAN,
         ];
         xs.extend((0..4000).map(|k| (k as f32 - 2000.0) * 0.173_1));
-        while xs.len() % 16 != 0 {
+        while !xs.len().is_multiple_of(16) {
             xs.push(7.25);
         }
         for chunk in xs.chunks_exact(16) {
@@ -261,7 +261,7 @@ mod tests {
             0.0, -0.0, 1e-30, -1e-30, -87.3, -87.4, 88.7, 88.73, 100.0, -1e30, 1e30,
         ]);
         xs.extend([f32::INFINITY, f32::NEG_INFINITY, f32::NAN]);
-        while xs.len() % 16 != 0 {
+        while !xs.len().is_multiple_of(16) {
             xs.push(0.5);
         }
         for chunk in xs.chunks_exact(16) {

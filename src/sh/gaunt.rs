@@ -99,7 +99,7 @@ pub fn gaunt_real(l1: u32, m1: i32, l2: u32, m2: i32, l3: u32, m3: i32) -> Resul
 /// `(re, im)`, without the `1/sqrt(2)` (see the module docs).
 fn phase(m: i32, s: i32) -> (i64, i64) {
     let mu = m.unsigned_abs();
-    let parity = if mu % 2 == 0 { 1 } else { -1 };
+    let parity = if mu.is_multiple_of(2) { 1 } else { -1 };
     match (m.signum(), s) {
         (0, _) => (1, 0),
         (1, 1) => (1, 0),

@@ -714,8 +714,6 @@ const FACTORIAL_EXPONENTS: [[i32; 8]; SMALL_J + 2] = {
 /// (table), giving `value = ±na sqrt(s) / c` with `s` square-free, and one rounding by
 /// [`round_product_sqrt_small`]. No heap allocation.
 #[inline]
-// `u64::is_multiple_of` needs Rust 1.87; the crate's rust-version is 1.85.
-#[allow(clippy::manual_is_multiple_of)]
 fn racah_small(tj: [i32; 3], tm: [i32; 3]) -> Option<f64> {
     if tm[0] + tm[1] + tm[2] != 0 || (0..3).any(|i| tm[i].abs() > tj[i]) {
         return Some(0.0);
@@ -768,7 +766,7 @@ fn racah_small(tj: [i32; 3], tm: [i32; 3]) -> Option<f64> {
         let p = SMALL_PRIMES[i];
         let mut e = e[i] - jf1[i] - 2 * jf[i];
         // Cancel common factors of S and the denominator: S sqrt(p^e) = (S/p) sqrt(p^(e+2)).
-        while e < 0 && na % p == 0 {
+        while e < 0 && na.is_multiple_of(p) {
             na /= p;
             e += 2;
         }
