@@ -13,6 +13,22 @@ pub const EUMELANIN_SIGMA_A: Rgb = [0.419, 0.697, 1.37];
 /// Pheomelanin absorption per unit concentration and radius (same source).
 pub const PHEOMELANIN_SIGMA_A: Rgb = [0.187, 0.4, 1.05];
 
+/// Checks an absorption coefficient: every channel finite and >= 0.
+///
+/// # Errors
+/// [`ParamError::OutOfRange`] naming `sigma_a` and the first offending value.
+pub fn validate_sigma_a(sigma_a: Rgb) -> Result<Rgb, ParamError> {
+    for &s in &sigma_a {
+        ParamError::check(
+            "sigma_a",
+            s,
+            "absorption must be finite and >= 0 in every channel",
+            |v| v >= 0.0,
+        )?;
+    }
+    Ok(sigma_a)
+}
+
 /// sigma_a from melanin concentrations: `eu * EUMELANIN_SIGMA_A + pheo * PHEOMELANIN_SIGMA_A`
 /// (Chiang et al. 2016, section 4.2). Typical human hair has `eu` in [0, 8].
 ///

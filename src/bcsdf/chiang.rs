@@ -72,14 +72,7 @@ impl ChiangParams {
             "the relative index of refraction must be > 1",
             |v| v > 1.0,
         )?;
-        for &s in &sigma_a {
-            ParamError::check(
-                "sigma_a",
-                s,
-                "absorption must be finite and >= 0 in every channel",
-                |v| v >= 0.0,
-            )?;
-        }
+        let sigma_a = crate::absorption::validate_sigma_a(sigma_a)?;
         Ok(ChiangParams {
             beta_m,
             beta_n,

@@ -51,15 +51,7 @@ fn check_sizes(kind: &str, sizes: &[usize], dims: usize) -> Result<(), LutError>
 }
 
 fn check_sigma_a(sigma_a: Rgb) -> Result<Rgb, ParamError> {
-    for &s in &sigma_a {
-        ParamError::check(
-            "sigma_a",
-            s,
-            "absorption must be finite and >= 0 in every channel",
-            |v| v >= 0.0,
-        )?;
-    }
-    Ok(sigma_a)
+    crate::absorption::validate_sigma_a(sigma_a)
 }
 
 fn check_eta(eta: f64) -> Result<f64, ParamError> {
