@@ -1,5 +1,6 @@
 //! Cost of the far-field N_p integrators and of the far-field BCSDF: the adaptive f64 reference,
-//! the fixed-node rule at several node counts in f64 and f32, and full far-field evaluation.
+//! the fixed-node rule at several node counts in f64 and f32, a baked far-field N_p table's
+//! trilinear lookup (the real-time alternative), and full far-field evaluation.
 //! Each iteration processes the same 256 deterministic (theta_o, phi) pairs; criterion's time
 //! divided by 256 is the cost of one N_p evaluation (all four lobes, three channels).
 //!
@@ -11,6 +12,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use hairmath::absorption::sigma_a_from_melanin;
 use hairmath::bcsdf::{ChiangFarField, ChiangHair, ChiangParams, FarFieldRule};
 use hairmath::geometry::{local_direction, V3};
+use hairmath::lut::{bake, FarFieldN};
 use hairmath::real::Real;
 
 const N: usize = 256;
@@ -56,6 +58,25 @@ fn bench_np(c: &mut Criterion) {
         let far32 = ChiangFarField::new(ChiangHair::<f32>::new(&params()), &rule);
         fast(&mut g, &format!("f32 {nodes} nodes"), &far32, &xs);
     }
+    // The same N_p from a baked 32 x 16 x 4 table over (phi, theta_o, beta_n): 12 channels
+    // (four lobes, rgb) per trilinear lookup.
+    let baker = FarFieldN::new(1.55, params().sigma_a(), 0.2, 0.5, 1e-6).expect("valid baker");
+    let table = bake(&baker, &[32, 16, 4]).expect("valid sizes");
+    let coords: Vec<[f32; 3]> = xs
+        .iter()
+        .map(|&(s, _, phi)| [phi.abs() as f32, s.asin().abs() as f32, 0.3])
+        .collect();
+    let mut out = vec![0.0_f32; 12];
+    g.bench_function(BenchmarkId::new("table", "32x16x4 trilinear"), |b| {
+        b.iter(|| {
+            for c in &coords {
+                table
+                    .lookup_into(black_box(c), &mut out)
+                    .expect("three coordinates");
+                black_box(&out);
+            }
+        })
+    });
     g.finish();
 }
 
