@@ -51,11 +51,6 @@ const INTEGRATOR_NODES: [usize; 5] = [8, 16, 32, 64, 128];
 /// reference that estimates the reference's own error.
 const REFERENCE_TOL: f64 = 1e-11;
 const REFINED_TOL: f64 = 1e-13;
-/// Smallest beta_n whose reference is refined: below it the integrand's peaks are so narrow
-/// that rel_tol 1e-13 (even 1e-12) is under the adaptive integrator's round-off floor and it
-/// bisects panels towards its minimum width (about 20 s per call at beta_n = 0.05; minutes
-/// for some points at beta_n = 0.1 and theta_o > 0).
-const REFINE_MIN_BETA_N: f64 = 0.3;
 
 /// A sphere rule: theta panels, Gauss-Legendre order, azimuths.
 type SphereSize = (usize, usize, usize);
@@ -574,11 +569,7 @@ fn integrator_row(beta_n: f64, grid: &[GridPoint], s: &Settings) -> Result<Strin
     let hair = ChiangHair::<f64>::new(&params);
     let (reference, us) = reference_values(&hair, grid, REFERENCE_TOL);
     let peak = peaks(&reference, s.integrator_phis);
-    let refinement = if beta_n >= REFINE_MIN_BETA_N {
-        refinement(&hair, grid, &reference, &peak, s.refine_every)
-    } else {
-        "n/a".to_string()
-    };
+    let refinement = refinement(&hair, grid, &reference, &peak, s.refine_every);
     let mut cells = vec![format!("{beta_n}"), format!("{us:.0}"), refinement];
     for n in INTEGRATOR_NODES {
         let fast = fast_values(hair, n, grid)?;
@@ -633,9 +624,7 @@ fn integrator_table(out: &mut impl Write, s: &Settings) -> Result<(), CliError> 
          whose peak is below {PEAK_FLOOR:e} are skipped). beta_m = {BETA}, alpha = {ALPHA_DEG} \
          deg, eta = {ETA}. `ref us`: microseconds per reference call. `ref refinement`: the \
          reference's own error, its max difference (same measure) from rel_tol {REFINED_TOL:e} \
-         on every {}th grid point; n/a below beta_n = {REFINE_MIN_BETA_N}, where the peaks are \
-         so narrow that rel_tol 1e-12 and below sits under the adaptive integrator's round-off \
-         floor (it bisects towards its minimum panel width, ~20 s per call). `ns per fast N_p`: \
+         on every {}th grid point. `ns per fast N_p`: \
          one `azimuthal` call (all lobes and channels), indicative.\n",
         s.integrator_phis, s.integrator_theta_o, s.refine_every,
     )?;
