@@ -204,7 +204,7 @@ fn roughness_integrated_np_tends_to_marschner_as_roughness_vanishes() {
         .collect();
     let marschner: Vec<f64> = phis
         .iter()
-        .map(|&phi| marschner_np(p, phi, 0.0, eta, [0.0; 3], None)[0])
+        .map(|&phi| marschner_np(path(p), phi, 0.0, eta, [0.0; 3], None)[0])
         .collect();
     let l1 = |beta_n: f64, exit: &dyn Fn(f64) -> f64| {
         phis.iter()
@@ -236,4 +236,9 @@ fn roughness_integrated_np_tends_to_marschner_as_roughness_vanishes() {
         exact[2] > 0.5 * exact[1] && exact[2] > 10.0 * cubic[2],
         "{exact:?} vs {cubic:?}"
     );
+}
+
+/// Marschner's path with `p` internal segments (valid in these tests by construction).
+fn path(p: u32) -> hairmath::azimuthal::MarschnerPath {
+    hairmath::azimuthal::MarschnerPath::from_p(p).expect("p <= 3")
 }

@@ -335,8 +335,8 @@ fn marschner_n_is_even_in_phi_and_finite_at_grazing() {
         for k in 0..=40 {
             let phi = PI * k as f64 / 40.0;
             for p in 0..3 {
-                let a = marschner_np(p, phi, sin_d, 1.55, [0.3, 0.5, 0.9], Some(&caustic));
-                let b = marschner_np(p, -phi, sin_d, 1.55, [0.3, 0.5, 0.9], Some(&caustic));
+                let a = marschner_np(path(p), phi, sin_d, 1.55, [0.3, 0.5, 0.9], Some(&caustic));
+                let b = marschner_np(path(p), -phi, sin_d, 1.55, [0.3, 0.5, 0.9], Some(&caustic));
                 for c in 0..3 {
                     assert!(a[c].is_finite());
                     assert!(
@@ -461,4 +461,9 @@ fn print_error_tables() {
     // lookup_error is also usable on a given table.
     let t = bake(&NguyenM::default(), &[8, 8]).unwrap();
     assert!(lookup_error(&NguyenM::default(), &t, 10).is_ok());
+}
+
+/// Marschner's path with `p` internal segments (valid in these tests by construction).
+fn path(p: u32) -> hairmath::azimuthal::MarschnerPath {
+    hairmath::azimuthal::MarschnerPath::from_p(p).expect("p <= 3")
 }

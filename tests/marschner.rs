@@ -100,7 +100,7 @@ fn roots_match_a_brute_force_scan() {
             let exact = trt_caustic(e, &CausticParams::default()).phi_c;
             phis.extend([exact, -exact]);
             for &phi in &phis {
-                let ours = marschner_roots(p, phi, e);
+                let ours = marschner_roots(path(p), phi, e);
                 let reference = brute_force_roots(p, phi, e);
                 assert_eq!(
                     ours.len(),
@@ -224,7 +224,7 @@ fn energy_identity_phi_integral_equals_half_h_integral() {
                         marschner_attenuation(p, g.sin(), eta, sin_td, sigma_a)[c] * g.cos()
                     });
                 let got = integrate_phi(p, eta_prime, |phi| {
-                    marschner_np(p, phi, sin_td, eta, sigma_a, None)[c]
+                    marschner_np(path(p), phi, sin_td, eta, sigma_a, None)[c]
                 });
                 let rel = (got - reference).abs() / reference;
                 // At eta' = 2 the TRT caustics merge into a cusp, N ~ |phi|^(-2/3), and the
@@ -267,7 +267,7 @@ fn finite_and_non_negative_at_caustics() {
                 let phi = c + d;
                 for p in 0..=2 {
                     for caustic in [None, Some(&params[0]), Some(&params[1])] {
-                        let n = marschner_np(p, phi, 0.0, e, sigma_a, caustic);
+                        let n = marschner_np(path(p), phi, 0.0, e, sigma_a, caustic);
                         assert!(
                             n.iter().all(|v| v.is_finite() && *v >= 0.0),
                             "p {p} eta' {e} phi {phi} caustic {caustic:?}: {n:?}"
@@ -296,8 +296,8 @@ fn caustic_treatment_is_continuous_across_eta_prime_two() {
     assert_eq!(trt_caustic(2.0 + params.fade_range(), &params).t, 0.0);
     let sigma = [0.2, 0.5, 1.0];
     for &phi in &[0.5, 1.0, 2.0, 3.0] {
-        let a = marschner_np(2, phi, 0.0, 2.0 - 1e-9, sigma, Some(&params));
-        let b = marschner_np(2, phi, 0.0, 2.0 + 1e-9, sigma, Some(&params));
+        let a = marschner_np(path(2), phi, 0.0, 2.0 - 1e-9, sigma, Some(&params));
+        let b = marschner_np(path(2), phi, 0.0, 2.0 + 1e-9, sigma, Some(&params));
         for c in 0..3 {
             assert!(
                 (a[c] - b[c]).abs() < 1e-6 * a[c].max(1e-12),
@@ -310,15 +310,15 @@ fn caustic_treatment_is_continuous_across_eta_prime_two() {
     let e = 1.55;
     let c = trt_caustic(e, &params);
     let far = wrap(c.phi_c + PI);
-    let plain = marschner_np(2, far, 0.0, e, sigma, None);
-    let treated = marschner_np(2, far, 0.0, e, sigma, Some(&params));
+    let plain = marschner_np(path(2), far, 0.0, e, sigma, None);
+    let treated = marschner_np(path(2), far, 0.0, e, sigma, Some(&params));
     for i in 0..3 {
         assert!(
             (plain[i] - treated[i]).abs() <= 1e-3 * plain[i] + 1e-12,
             "{plain:?} {treated:?}"
         );
     }
-    let at = marschner_np(2, c.phi_c, 0.0, e, sigma, Some(&params));
+    let at = marschner_np(path(2), c.phi_c, 0.0, e, sigma, Some(&params));
     assert!(
         at.iter().all(|v| v.is_finite() && *v > 0.0 && *v < 10.0),
         "{at:?}"
@@ -352,4 +352,20 @@ fn invalid_caustic_parameters_are_typed_errors() {
         (0.5, 0.3, 0.5)
     );
     assert!((def.caustic_width() - 15f64.to_radians()).abs() < 1e-15);
+}
+
+/// Marschner's path with `p` internal segments (valid in these tests by construction).
+fn path(p: u32) -> hairmath::azimuthal::MarschnerPath {
+    hairmath::azimuthal::MarschnerPath::from_p(p).expect("p <= 3")
+}
+
+#[test]
+fn paths_beyond_p_3_are_a_typed_error() {
+    for p in 0..=3 {
+        assert_eq!(path(p).p(), p);
+    }
+    let e = hairmath::azimuthal::MarschnerPath::from_p(4)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("p = 4") && e.contains("0, 1, 2 or 3"), "{e}");
 }

@@ -55,6 +55,44 @@ use crate::fresnel::{bravais_eta_parallel, bravais_eta_perpendicular};
 /// capacity than [`ROOT_CAPACITY`].
 pub const MARSCHNER_MAX_P: u32 = 3;
 
+/// A scattering path of Marschner's model: the number p of internal segments, as a type, so
+/// that root solving cannot be asked for a path it does not model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MarschnerPath {
+    /// p = 0: surface reflection.
+    R,
+    /// p = 1: transmission through the fibre.
+    TT,
+    /// p = 2: one internal reflection.
+    TRT,
+    /// p = 3: two internal reflections.
+    TRRT,
+}
+
+impl MarschnerPath {
+    /// The paths in order of p.
+    pub const ALL: [MarschnerPath; 4] = [Self::R, Self::TT, Self::TRT, Self::TRRT];
+
+    /// The path with `p` internal segments.
+    ///
+    /// # Errors
+    /// `p` greater than [`MARSCHNER_MAX_P`].
+    pub fn from_p(p: u32) -> Result<Self, crate::error::ParamError> {
+        crate::error::ParamError::check(
+            "p",
+            f64::from(p),
+            "the path count p must be 0, 1, 2 or 3",
+            |v| v <= f64::from(MARSCHNER_MAX_P),
+        )?;
+        Ok(Self::ALL[p as usize])
+    }
+
+    /// The number of internal segments p.
+    pub fn p(self) -> u32 {
+        self as u32
+    }
+}
+
 /// Capacity of a [`RootList`]. Phi~ has at most two critical points, so [-pi/2, pi/2] splits
 /// into at most three monotone pieces; the total variation of Phi~ is at most
 /// `4 p c + 2 pi <= 2 pi (p + 1)`, so the pieces meet the levels `phi + 2 pi k` at most
@@ -212,13 +250,8 @@ fn polish(a: f64, b: f64, d: f64, mut g: f64) -> f64 {
 /// to its ends; roots of one shift closer than 1e-7 to each other are merged into one multiple
 /// root (their mean). For p = 0 the single root is `gamma = -phi / 2` (wrapped).
 ///
-/// # Panics
-/// If `p > MARSCHNER_MAX_P`.
-pub fn marschner_roots(p: u32, phi: f64, eta_prime: f64) -> RootList {
-    assert!(
-        p <= MARSCHNER_MAX_P,
-        "marschner_roots: p = {p} > {MARSCHNER_MAX_P}"
-    );
+pub fn marschner_roots(path: MarschnerPath, phi: f64, eta_prime: f64) -> RootList {
+    let p = path.p();
     let (a, b) = cubic_coefficients(p, eta_prime);
     let pp = f64::from(p) * PI;
     let value = |g: f64| (a * g * g + b) * g + pp;
@@ -562,10 +595,8 @@ pub fn trt_caustic(eta_prime: f64, params: &CausticParams) -> TrtCaustic {
 /// eta' = 2 and on again above it); h_c = 0 for eta' >= 2; the wrapping of `phi -+ phi_c`;
 /// and A(2, h_c) is evaluated with the same absorption and Fresnel factors as N_TRT.
 ///
-/// # Panics
-/// If `p > MARSCHNER_MAX_P`.
 pub fn marschner_np(
-    p: u32,
+    path: MarschnerPath,
     phi: f64,
     sin_theta_d: f64,
     eta: f64,
@@ -575,7 +606,8 @@ pub fn marschner_np(
     let medium = Medium::new(eta, sin_theta_d);
     let eta_prime = medium.eta_perp;
     let mut n = [0.0; 3];
-    for &g in marschner_roots(p, phi, eta_prime).iter() {
+    let p = path.p();
+    for &g in marschner_roots(path, phi, eta_prime).iter() {
         let cos_g = g.cos().max(0.0);
         let slope = marschner_exit_angle_derivative(p, g, eta_prime).abs();
         // 1 / |2 dPhi/dh| = cos g / (2 |dPhi~/dg|), with |dPhi/dh| >= MIN_DPHI_DH; at g = +-pi/2

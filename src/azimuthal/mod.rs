@@ -16,5 +16,6 @@ pub use exit_angle::{exit_angle, exit_angle_of_offset, refracted_offset};
 pub use marschner::{
     marschner_attenuation, marschner_critical_angle, marschner_exit_angle,
     marschner_exit_angle_derivative, marschner_fresnel, marschner_np, marschner_roots, trt_caustic,
-    CausticParams, RootList, TrtCaustic, MARSCHNER_MAX_P, MIN_DPHI_DH, ROOT_CAPACITY,
+    CausticParams, MarschnerPath, RootList, TrtCaustic, MARSCHNER_MAX_P, MIN_DPHI_DH,
+    ROOT_CAPACITY,
 };

@@ -6,7 +6,7 @@ use core::f64::consts::{FRAC_PI_2, PI};
 use super::table::{Axis, ParamValue, Table, TableMeta};
 use super::LutError;
 use crate::absorption::Rgb;
-use crate::azimuthal::{marschner_np, CausticParams, LOBES};
+use crate::azimuthal::{marschner_np, CausticParams, MarschnerPath, LOBES};
 use crate::bcsdf::{ChiangHair, ChiangParams};
 use crate::error::ParamError;
 use crate::lobe::gaussian_lobe;
@@ -287,9 +287,30 @@ impl Baker for NguyenN {
         let c = clamp_to(0.0, 1.0, coords[1]);
         let sin_d = (1.0 - c * c).max(0.0).sqrt();
         let caustic = self.caustic.as_ref();
-        let tt = marschner_np(1, phi, sin_d, self.eta, self.sigma_a, caustic);
-        let r = marschner_np(0, phi, sin_d, self.eta, self.sigma_a, caustic);
-        let trt = marschner_np(2, phi, sin_d, self.eta, self.sigma_a, caustic);
+        let tt = marschner_np(
+            MarschnerPath::TT,
+            phi,
+            sin_d,
+            self.eta,
+            self.sigma_a,
+            caustic,
+        );
+        let r = marschner_np(
+            MarschnerPath::R,
+            phi,
+            sin_d,
+            self.eta,
+            self.sigma_a,
+            caustic,
+        );
+        let trt = marschner_np(
+            MarschnerPath::TRT,
+            phi,
+            sin_d,
+            self.eta,
+            self.sigma_a,
+            caustic,
+        );
         out[..3].copy_from_slice(&tt);
         out[3] = r[0];
         out[4..7].copy_from_slice(&trt);
@@ -374,15 +395,8 @@ impl Baker for GerardN {
         let phi = clamp_to(0.0, PI, coords[0]);
         let theta_d = clamp_to(0.0, self.theta_d_max, coords[1]);
         let sin_d = theta_d.sin();
-        for (p, o) in out.iter_mut().enumerate() {
-            *o = marschner_np(
-                p as u32,
-                phi,
-                sin_d,
-                self.eta,
-                [0.0; 3],
-                self.caustic.as_ref(),
-            )[0];
+        for (path, o) in MarschnerPath::ALL.into_iter().zip(out.iter_mut()) {
+            *o = marschner_np(path, phi, sin_d, self.eta, [0.0; 3], self.caustic.as_ref())[0];
         }
     }
 }
