@@ -381,6 +381,15 @@ impl<R: Real> ChiangHair<R> {
     /// `A_p` per channel and `N_p` at offset `h` (clamped to [-1, 1]) for relative azimuth
     /// `phi`: the part of [`ChiangHair::azimuthal`] that evaluation needs (it skips the lobe
     /// weights of sampling).
+    /// gamma_o, gamma_t and `A_p` per lobe and channel at offset `h` (clamped to [-1, 1]).
+    fn attenuations_at(&self, sin_o: R, cos_o: R, h: R) -> (R, R, [[R; 3]; LOBES]) {
+        let h = h.clamp(R::c(-1.0), R::c(1.0));
+        let (gamma_o, gamma_t, transmittance, fresnel) = self.path(sin_o, cos_o, h);
+        let per_channel = transmittance.map(|t| attenuations_from_fresnel(fresnel, t));
+        let a = core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
+        (gamma_o, gamma_t, a)
+    }
+
     fn attenuations_and_azimuths(
         &self,
         sin_o: R,
@@ -388,11 +397,7 @@ impl<R: Real> ChiangHair<R> {
         phi: R,
         h: R,
     ) -> ([[R; 3]; LOBES], [R; LOBES]) {
-        let h = h.clamp(R::c(-1.0), R::c(1.0));
-        let (gamma_o, gamma_t, transmittance, fresnel) = self.path(sin_o, cos_o, h);
-        let per_channel = transmittance.map(|t| attenuations_from_fresnel(fresnel, t));
-        let a: [[R; 3]; LOBES] =
-            core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
+        let (gamma_o, gamma_t, a) = self.attenuations_at(sin_o, cos_o, h);
         // N_p = logistic(dphi_p, s) / (trimmed mass) = e_p / (s mass (1 + e_p)^2) with
         // e_p = exp(-|dphi_p| / s): 1/s and 1/(s mass) are precomputed, and the three
         // denominators (each in [1, 4]) share one division.
@@ -492,11 +497,8 @@ impl<R: Real> ChiangHair<R> {
     /// The direction [`ChiangHair::sample`] draws, without evaluating S and the pdf there.
     pub(crate) fn sample_direction(&self, wo: V3<R>, h: R, u: [R; 2], uc: R) -> V3<R> {
         let one = R::c(1.0);
-        let h = h.clamp(-one, one);
         let (sin_o, cos_o) = local_sin_cos_theta(wo);
-        let (gamma_o, gamma_t, transmittance, fresnel) = self.path(sin_o, cos_o, h);
-        let per_channel = transmittance.map(|t| attenuations_from_fresnel(fresnel, t));
-        let a = core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
+        let (gamma_o, gamma_t, a) = self.attenuations_at(sin_o, cos_o, h);
         let w = Self::lobe_weights(&a);
 
         // Choose p: the first lobe whose cumulative weight exceeds uc; remap uc into it.
