@@ -5,6 +5,7 @@ pub mod absorption;
 pub mod azimuthal;
 pub mod bcsdf;
 pub mod error;
+pub mod fit;
 pub mod fresnel;
 pub mod geometry;
 pub mod lobe;
