@@ -25,8 +25,8 @@ use hairmath::geometry::{
 };
 use hairmath::lobe::bessel::{i0, i0e_split, log_i0, log_i0e};
 use hairmath::lobe::{
-    deon_lobe, deon_lobe_sample_cos_theta, gaussian_lobe, hg_gerard_printed, DeonLobe,
-    HenyeyGreenstein,
+    deon_lobe, deon_lobe_sample_cos_theta, gaussian_lobe, gerard_hg_g, hg_g_normalised,
+    hg_gerard_printed, DeonLobe, HenyeyGreenstein,
 };
 use hairmath::lut::axis_cell;
 use hairmath::real::{horner, pi, safe_asin, safe_sqrt, trace, wrap_angle, Graph, Real, Traced};
@@ -640,6 +640,12 @@ traced_tests! {
     lobe_hg_gerard_printed ["hg_gerard_printed"] {
         let inputs = scalars(&[HG_G, SIN]);
         case!("hg_gerard_printed", inputs, |x| vec![hg_gerard_printed(x[0], x[1])]);
+    }
+    lobe_hg_g_of_beta ["gerard_hg_g", "hg_g_normalised"] {
+        // Widths inside and outside the closed forms' domain [1, 45] degrees (clamped).
+        let widths = arg(0.0, 1.2, &[0.0, 0.017453292, 0.785398, 1e-6, 3.0]);
+        case!("gerard_hg_g", scalars(&[widths]), |x| vec![gerard_hg_g(x[0])]);
+        case!("hg_g_normalised", scalars(&[widths]), |x| vec![hg_g_normalised(x[0])]);
     }
     lobe_henyey_greenstein ["HenyeyGreenstein::eval"] {
         // g is a per-lobe constant folded into the shader: one trace per g.

@@ -8,7 +8,14 @@
 //! fitting machinery: it is always compiled, while the fitter itself is behind the `fit`
 //! feature (on by default).
 
+// Generated text: formatted by its generator, not by rustfmt (tests/fit_constants.rs compares
+// it with a fresh generation).
+#[rustfmt::skip]
 pub mod constants;
+#[cfg(feature = "fit")]
+pub mod generate;
+#[cfg(feature = "fit")]
+pub mod hg;
 
 #[cfg(feature = "fit")]
 mod optimise;

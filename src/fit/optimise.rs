@@ -250,7 +250,10 @@ mod tests {
     fn nelder_mead_recovers_rosenbrock() {
         let rosen = |p: &[f64]| (1.0 - p[0]).powi(2) + 100.0 * (p[1] - p[0] * p[0]).powi(2);
         let m = minimize("rosenbrock", rosen, &[-1.2, 1.0], &[0.1, 0.1], 1e-16).unwrap();
-        assert!((m.params[0] - 1.0).abs() < 1e-4 && (m.params[1] - 1.0).abs() < 1e-4, "{m:?}");
+        assert!(
+            (m.params[0] - 1.0).abs() < 1e-4 && (m.params[1] - 1.0).abs() < 1e-4,
+            "{m:?}"
+        );
         assert!(is_coordinate_minimum(rosen, &m.params, 1e-3));
         assert!(!is_coordinate_minimum(rosen, &[0.5, 0.5], 1e-3));
     }
@@ -259,7 +262,10 @@ mod tests {
     fn too_few_iterations_is_an_error_not_a_value() {
         // A loss that never settles: Nelder-Mead runs into the iteration cap.
         let err = minimize("unbounded", |p| -p[0].abs(), &[1.0], &[1.0], 0.0).unwrap_err();
-        assert!(matches!(err, FitError::NotConverged { .. } | FitError::Degenerate { .. }));
+        assert!(matches!(
+            err,
+            FitError::NotConverged { .. } | FitError::Degenerate { .. }
+        ));
     }
 
     #[test]
@@ -267,7 +273,10 @@ mod tests {
         let rows: Vec<Vec<f64>> = (0..10).map(|i| vec![1.0, i as f64]).collect();
         let targets: Vec<f64> = (0..10).map(|i| 2.0 - 0.5 * i as f64).collect();
         let x = linear_least_squares("line", &rows, &targets).unwrap();
-        assert!((x[0] - 2.0).abs() < 1e-12 && (x[1] + 0.5).abs() < 1e-12, "{x:?}");
+        assert!(
+            (x[0] - 2.0).abs() < 1e-12 && (x[1] + 0.5).abs() < 1e-12,
+            "{x:?}"
+        );
         let flat: Vec<Vec<f64>> = (0..10).map(|_| vec![1.0, 2.0]).collect();
         assert!(linear_least_squares("flat", &flat, &targets).is_err());
     }

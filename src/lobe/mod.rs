@@ -8,4 +8,6 @@ mod henyey_greenstein;
 
 pub use deon::{deon_lobe, deon_lobe_sample_cos_theta, DeonLobe};
 pub use gaussian::gaussian_lobe;
-pub use henyey_greenstein::{hg_gerard_printed, HenyeyGreenstein};
+pub use henyey_greenstein::{
+    gerard_hg_g, hg_g_normalised, hg_gerard_printed, HenyeyGreenstein, HG_G_BETA_DOMAIN,
+};

@@ -4,6 +4,8 @@
 //! - `hairmath report` prints lobe energies of a few hair colours, a white-furnace check and
 //!   an indicative evaluation speed.
 //! - `hairmath lut` bakes a lookup table and writes it as raw f32 + JSON (and PNG).
+//! - `hairmath fit` regenerates the fitted constants of the source documents and prints them
+//!   beside the published values, with errors; it can write the generated constants file.
 //! - `hairmath wigner3j` and `hairmath gaunt` compute Wigner 3-j symbols and Gaunt coefficients
 //!   of rows read as CSV from stdin.
 //!
@@ -11,6 +13,7 @@
 //! status 2; argument errors found by clap keep clap's own status.
 
 mod eval;
+mod fit;
 mod lut;
 mod report;
 mod sh;
@@ -60,6 +63,16 @@ enum Command {
     /// N_p table), write it as raw little-endian f32 with a JSON description (and 8-bit PNG
     /// for 2D tables) to --out, and print the error of lookup against direct evaluation.
     Lut(lut::LutArgs),
+    /// Regenerate every fitted constant (Gerard's Henyey-Greenstein g and absorption
+    /// exponents, Karis' closed forms, Frostbite's TT Gaussians and single-offset
+    /// attenuations) and print one table: constant, source, published value, refit value,
+    /// metric and the error of each.
+    ///
+    /// --json prints the same rows as a JSON array with the keys key, source, approximates,
+    /// published, refit, metric, published_error, refit_error (null where the paper prints
+    /// nothing). --write-constants PATH also writes the generated Rust file of fitted
+    /// constants. Takes a few seconds in a release build.
+    Fit(fit::FitArgs),
     /// Wigner 3-j symbols (j1 j2 j3; m1 m2 m3) of rows read as CSV from stdin.
     ///
     /// The header must name the columns j1, j2, j3, m1, m2, m3 (any order, other columns
@@ -129,6 +142,7 @@ fn main() -> ExitCode {
         Command::Eval(args) => eval::run(args),
         Command::Report(args) => report::run(args),
         Command::Lut(args) => lut::run(args),
+        Command::Fit(args) => fit::run(args),
         Command::Wigner3j(args) => sh::run_wigner3j(args),
         Command::Gaunt(args) => sh::run_gaunt(args),
     };
