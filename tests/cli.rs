@@ -465,3 +465,50 @@ fn gaunt_malformed_row_is_reported() {
     let o = hairmath(&["gaunt", "--real"], "l1,m1,l2,m2,l3,m3\n1,0,1,0\n");
     assert_fails_with(&o, &["line 2", "expected 6 fields", "found 4"]);
 }
+
+#[test]
+fn fit_json_has_the_documented_keys_and_the_library_values() {
+    let o = hairmath(&["fit", "--json"], "");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("valid JSON");
+    let rows = rows.as_array().expect("an array");
+    let fields = [
+        "key",
+        "source",
+        "approximates",
+        "published",
+        "refit",
+        "metric",
+        "published_error",
+        "refit_error",
+    ];
+    for row in rows {
+        for field in fields {
+            assert!(row.get(field).is_some(), "{field} missing in {row}");
+        }
+    }
+    let refit = |key: &str| {
+        rows.iter()
+            .find(|r| r["key"] == key)
+            .unwrap_or_else(|| panic!("{key} missing"))["refit"]
+            .as_f64()
+            .unwrap()
+    };
+    use hairmath::fit::hg::{fit_hg_g, HgReading};
+    for deg in [5, 10, 20] {
+        let library = fit_hg_g(HgReading::Literal, f64::from(deg).to_radians()).unwrap().g;
+        let key = format!("gerard.hg_g.literal.beta_{deg}deg");
+        assert!((refit(&key) - library).abs() < 1e-12, "{key}");
+    }
+}
+
+#[test]
+fn fit_table_and_bad_eta() {
+    let o = hairmath(&["fit"], "");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.starts_with("| constant | source | published | refit | metric |"), "{out}");
+    assert!(out.contains("gerard.hg_g.literal.beta_10deg"));
+    let o = hairmath(&["fit", "--eta", "0.9"], "");
+    assert_fails_with(&o, &["eta", "(1, 3]"]);
+}
