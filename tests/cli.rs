@@ -496,7 +496,9 @@ fn fit_json_has_the_documented_keys_and_the_library_values() {
     };
     use hairmath::fit::hg::{fit_hg_g, HgReading};
     for deg in [5, 10, 20] {
-        let library = fit_hg_g(HgReading::Literal, f64::from(deg).to_radians()).unwrap().g;
+        let library = fit_hg_g(HgReading::Literal, f64::from(deg).to_radians())
+            .unwrap()
+            .g;
         let key = format!("gerard.hg_g.literal.beta_{deg}deg");
         assert!((refit(&key) - library).abs() < 1e-12, "{key}");
     }
@@ -507,7 +509,10 @@ fn fit_table_and_bad_eta() {
     let o = hairmath(&["fit"], "");
     assert!(o.status.success(), "{}", stderr(&o));
     let out = stdout(&o);
-    assert!(out.starts_with("| constant | source | published | refit | metric |"), "{out}");
+    assert!(
+        out.starts_with("| constant | source | published | refit | metric |"),
+        "{out}"
+    );
     assert!(out.contains("gerard.hg_g.literal.beta_10deg"));
     let o = hairmath(&["fit", "--eta", "0.9"], "");
     assert_fails_with(&o, &["eta", "(1, 3]"]);

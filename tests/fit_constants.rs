@@ -36,7 +36,10 @@ fn every_record_has_a_finite_refit_and_error() {
     for r in &fits.records {
         assert!(keys.insert(r.key.clone()), "duplicate key {}", r.key);
         assert!(r.refit.is_finite() && r.refit_error.is_finite(), "{r:?}");
-        assert!(r.published_error.is_some() == r.published.is_some(), "{r:?}");
+        assert!(
+            r.published_error.is_some() == r.published.is_some(),
+            "{r:?}"
+        );
     }
     // Every generated constant documents itself.
     for c in &fits.constants {

@@ -137,6 +137,7 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
     far_lobe_table(&mut out, &settings, &near)?;
     far_furnace(&mut out, &settings)?;
     integrator_table(&mut out, &settings)?;
+    fitted_constants(&mut out)?;
     out.flush()?;
     Ok(())
 }
@@ -653,5 +654,13 @@ fn integrator_table(out: &mut impl Write, s: &Settings) -> Result<(), CliError> 
         ));
     }
     writeln!(out, "| ns per fast N_p | | | {} |", times.join(" | "))?;
+    Ok(())
+}
+
+/// The summary of `hairmath fit`: every regenerated constant beside its published value.
+fn fitted_constants(out: &mut impl Write) -> Result<(), CliError> {
+    writeln!(out, "\n## Fitted constants (`hairmath fit`, eta = {ETA})\n")?;
+    let (_, fits) = crate::fit::fits(ETA)?;
+    crate::fit::table(out, &fits.records)?;
     Ok(())
 }
