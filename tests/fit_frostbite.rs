@@ -305,4 +305,6 @@ fn frostbite_fits_returns_records_and_constants() {
     for c in &out.constants {
         println!("{}:\n  {}", c.name, c.doc.join("\n  "));
     }
+    // The generated file is compared as text: a second run must give identical output.
+    assert_eq!(frostbite_fits(&FitSettings::default()).unwrap(), out);
 }
