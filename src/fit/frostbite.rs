@@ -260,7 +260,7 @@ pub struct TtGaussianTable {
     pub theta_o: Vec<f64>,
     /// Column axis: beta_n.
     pub beta_n: Vec<f64>,
-    /// `slices[i][j]` fits theta_o[i], beta_n[j].
+    /// `slices[i][j]` fits `theta_o[i]`, `beta_n[j]`.
     pub slices: Vec<Vec<GaussianSliceFit>>,
     /// (row, column) of the slice with the largest `rms_error`.
     pub worst: (usize, usize),
@@ -402,7 +402,7 @@ pub struct AttenuationErrorTable {
     pub sigma_a: Vec<f64>,
     /// Column axis: theta_d in radians.
     pub theta_d: Vec<f64>,
-    /// `relative_error[i][j]` at sigma_a[i], theta_d[j].
+    /// `relative_error[i][j]` at `sigma_a[i]`, `theta_d[j]`.
     pub relative_error: Vec<Vec<f64>>,
     /// RMS over the grid.
     pub rms: f64,
@@ -420,7 +420,7 @@ pub struct AttenuationProblem {
     pub sigma_a: Vec<f64>,
     /// Column axis: theta_d in radians (the ray's inclination).
     pub theta_d: Vec<f64>,
-    /// `targets[i][j]` at sigma_a[i], theta_d[j].
+    /// `targets[i][j]` at `sigma_a[i]`, `theta_d[j]`.
     pub targets: Vec<Vec<f64>>,
 }
 
