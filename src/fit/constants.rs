@@ -68,3 +68,135 @@ pub const HG_G_NORMALISED_POLYNOMIAL_MAX_ERROR: f64 = 1.10000000e-4;
 /// does not state it).
 /// Largest |g_fit - g_printed| at this c: 2.72e-4.
 pub const GERARD_HG_REPRODUCING_WIDTH_SCALE: f64 = 1.37918041e0;
+
+/// Axes of FROSTBITE_TT_GAUSSIAN_A/B (Tafuri 2019, Strand-based Hair Rendering in Frostbite (SIGGRAPH course), slides 18-19), eta = 1.55.
+/// Rows: theta_o in radians (0 to 80 degrees).
+pub const FROSTBITE_TT_THETA_O: [f64; 9] = [
+    0.00000000e0, 1.74532925e-1, 3.49065850e-1, 5.23598776e-1,
+    6.98131701e-1, 8.72664626e-1, 1.04719755e0, 1.22173048e0,
+    1.39626340e0,
+];
+
+/// Axes of FROSTBITE_TT_GAUSSIAN_A/B (Tafuri 2019, Strand-based Hair Rendering in Frostbite (SIGGRAPH course), slides 18-19), eta = 1.55.
+/// Columns: azimuthal roughness beta_n.
+pub const FROSTBITE_TT_BETA_N: [f64; 10] = [
+    1.00000000e-1, 2.00000000e-1, 3.00000000e-1, 4.00000000e-1,
+    5.00000000e-1, 6.00000000e-1, 7.00000000e-1, 8.00000000e-1,
+    9.00000000e-1, 1.00000000e0,
+];
+
+/// Frostbite's TT distribution LUT (Tafuri 2019, Strand-based Hair Rendering in Frostbite (SIGGRAPH course), slide 19): a (the height) of g(phi) = a exp(-b (|phi| - pi)^2)
+/// fitted per slice to D_TT(phi; theta_o, beta_n) = 1/2 int_{-1}^{1} D(phi - Phi(1, h)) dh, D Chiang 2016's trimmed logistic (eqs. 8, 13).
+/// Rows FROSTBITE_TT_THETA_O, columns FROSTBITE_TT_BETA_N; phi = phi_i - phi_o.
+/// Metric: RMS of (g - D_TT) / max D_TT over 181 equally spaced phi in [0, pi], per slice of theta_o x beta_n = 9 x 10, eta = 1.55.
+/// Measured: mean RMS 1.484e-2, worst RMS 4.843e-2 and max error 1.106e-1 (at theta_o = 80 deg, beta_n = 0.1); the paper prints no values.
+pub const FROSTBITE_TT_GAUSSIAN_A: [[f64; 10]; 9] = [
+    [
+        6.78314294e-1, 6.66676050e-1, 6.37714075e-1, 5.89340609e-1,
+        5.26967204e-1, 4.59476622e-1, 3.94471332e-1, 3.30356767e-1,
+        2.35166970e-1, 1.64844869e-1,
+    ],
+    [
+        6.68156615e-1, 6.57085869e-1, 6.29401290e-1, 5.82826060e-1,
+        5.22304563e-1, 4.56358747e-1, 3.92472762e-1, 3.29165131e-1,
+        2.34747642e-1, 1.64814429e-1,
+    ],
+    [
+        6.38791480e-1, 6.29257218e-1, 6.05083568e-1, 5.63556638e-1,
+        5.08349900e-1, 4.46924220e-1, 3.86365851e-1, 3.25490052e-1,
+        2.33441799e-1, 1.64719853e-1,
+    ],
+    [
+        5.93383732e-1, 5.85933318e-1, 5.66653913e-1, 5.32455313e-1,
+        4.85303403e-1, 4.30997574e-1, 3.75850442e-1, 3.19041566e-1,
+        2.31104775e-1, 1.64551381e-1,
+    ],
+    [
+        5.36691271e-1, 5.31378046e-1, 5.17302462e-1, 4.91340741e-1,
+        4.53818161e-1, 4.08519947e-1, 3.60555209e-1, 3.09386702e-1,
+        2.27498772e-1, 1.64292971e-1,
+    ],
+    [
+        4.74341008e-1, 4.70841796e-1, 4.61358850e-1, 4.43145347e-1,
+        4.15385411e-1, 3.79898604e-1, 3.40273825e-1, 2.96076523e-1,
+        2.22323927e-1, 1.63924260e-1,
+    ],
+    [
+        4.11938747e-1, 4.09765475e-1, 4.03762773e-1, 3.91801926e-1,
+        3.72566730e-1, 3.46375543e-1, 3.15315004e-1, 2.78908329e-1,
+        2.15320106e-1, 1.63426772e-1,
+    ],
+    [
+        3.54079788e-1, 3.52762320e-1, 3.49070726e-1, 3.41484258e-1,
+        3.28661255e-1, 3.10108039e-1, 2.86828817e-1, 2.58316841e-1,
+        2.06479019e-1, 1.62796926e-1,
+    ],
+    [
+        3.03413796e-1, 3.02593639e-1, 3.00265796e-1, 2.95354557e-1,
+        2.86731962e-1, 2.73731509e-1, 2.56860838e-1, 2.35707522e-1,
+        1.96307923e-1, 1.62063347e-1,
+    ],
+];
+
+/// Frostbite's TT distribution LUT (Tafuri 2019, Strand-based Hair Rendering in Frostbite (SIGGRAPH course), slide 19): b (rad^-2, the sharpness) of g(phi) = a exp(-b (|phi| - pi)^2)
+/// fitted per slice to D_TT(phi; theta_o, beta_n) = 1/2 int_{-1}^{1} D(phi - Phi(1, h)) dh, D Chiang 2016's trimmed logistic (eqs. 8, 13).
+/// Rows FROSTBITE_TT_THETA_O, columns FROSTBITE_TT_BETA_N; phi = phi_i - phi_o.
+/// Metric: RMS of (g - D_TT) / max D_TT over 181 equally spaced phi in [0, pi], per slice of theta_o x beta_n = 9 x 10, eta = 1.55.
+/// Measured: mean RMS 1.484e-2, worst RMS 4.843e-2 and max error 1.106e-1 (at theta_o = 80 deg, beta_n = 0.1); the paper prints no values.
+pub const FROSTBITE_TT_GAUSSIAN_B: [[f64; 10]; 9] = [
+    [
+        1.46818291e0, 1.41505000e0, 1.28985449e0, 1.09945012e0,
+        8.81590127e-1, 6.74453678e-1, 4.98370660e-1, 3.43585666e-1,
+        1.43859523e-1, 1.08129939e-2,
+    ],
+    [
+        1.42195373e0, 1.37241046e0, 1.25486025e0, 1.07425212e0,
+        8.65368367e-1, 6.64844354e-1, 4.92972791e-1, 3.40811549e-1,
+        1.43054904e-1, 1.07551401e-2,
+    ],
+    [
+        1.29275059e0, 1.25256548e0, 1.15532509e0, 1.00144491e0,
+        8.17734187e-1, 6.36200724e-1, 4.76659832e-1, 3.32309986e-1,
+        1.40549818e-1, 1.05754169e-2,
+    ],
+    [
+        1.10589521e0, 1.07747552e0, 1.00666776e0, 8.89396575e-1,
+        7.42071433e-1, 5.89317279e-1, 4.49200314e-1, 3.17584477e-1,
+        1.36069327e-1, 1.02552963e-2,
+    ],
+    [
+        8.94454436e-1, 8.76809110e-1, 8.31331340e-1, 7.51689103e-1,
+        6.44760736e-1, 5.26257890e-1, 4.10640514e-1, 2.95973913e-1,
+        1.29164359e-1, 9.76433485e-3,
+    ],
+    [
+        6.89544026e-1, 6.79776405e-1, 6.53754516e-1, 6.05440676e-1,
+        5.35444939e-1, 4.51124334e-1, 3.61917475e-1, 2.66983420e-1,
+        1.19276502e-1, 9.06390505e-3,
+    ],
+    [
+        5.12836150e-1, 5.07871382e-1, 4.94267423e-1, 4.67601596e-1,
+        4.25746422e-1, 3.70164534e-1, 3.05427767e-1, 2.30828459e-1,
+        1.05939319e-1, 8.11892033e-3,
+    ],
+    [
+        3.73264871e-1, 3.70814968e-1, 3.63951906e-1, 3.49819380e-1,
+        3.25730258e-1, 2.90298830e-1, 2.45001083e-1, 1.89042988e-1,
+        8.91810584e-2, 6.92251361e-3,
+    ],
+    [
+        2.67948961e-1, 2.66654668e-1, 2.62933880e-1, 2.54851372e-1,
+        2.40029842e-1, 2.16598875e-1, 1.85039778e-1, 1.44735383e-1,
+        6.99970145e-2, 5.52896801e-3,
+    ],
+];
+
+/// The offset h at which Frostbite evaluates A_TT instead of its h-average (Tafuri 2019, Strand-based Hair Rendering in Frostbite (SIGGRAPH course); published h = 0), refitted.
+/// Metric: RMS over sigma_a in [0.0, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0] x theta_d in [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 85.0] deg (theta_o = theta_d) of (A_TT(h) - E)/E, E = 1/2 int A dh, Chiang 2016 attenuation with chord transmittance.
+/// Measured: refit 5.464e-2, published 2.308e-1.
+pub const FROSTBITE_TT_OFFSET_H: f64 = 6.00278930e-1;
+
+/// The offset h at which Frostbite evaluates A_TRT instead of its h-average (Tafuri 2019, Strand-based Hair Rendering in Frostbite (SIGGRAPH course); published h = sqrt(3)/2), refitted.
+/// Metric: RMS over sigma_a in [0.0, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0] x theta_d in [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 85.0] deg (theta_o = theta_d) of (A_TRT(h) - E)/E, E = 1/2 int A dh, Chiang 2016 attenuation with chord transmittance.
+/// Measured: refit 1.510e-1, published 7.161e-1.
+pub const FROSTBITE_TRT_OFFSET_H: f64 = 7.19305022e-1;
