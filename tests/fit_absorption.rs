@@ -10,7 +10,8 @@ use hairmath::fit::absorption_exponent::{
     gerard_eq8_trt_printed, lobe_energies, ratio_loss, Directions, EnergyRule, Lobe, RatioSamples,
     PATHS, TABLE_SIGMA_A,
 };
-use hairmath::fit::{is_coordinate_minimum, ConstValue, FitOutput, FitSettings};
+use hairmath::fit::generate::constants_source;
+use hairmath::fit::{is_coordinate_minimum, FitSettings};
 use hairmath::quadrature::adaptive;
 
 const ETA: f64 = 1.55;
@@ -205,27 +206,12 @@ fn eight_fits_converge_to_minima_and_beat_gerard() {
     }
 }
 
-/// The generated file's text, as `hairmath fit --write-constants` would lay it out.
-fn render(output: &FitOutput) -> String {
-    let mut text = String::new();
-    for c in &output.constants {
-        for line in &c.doc {
-            text.push_str(&format!("/// {line}\n"));
-        }
-        let value = match &c.value {
-            ConstValue::Array(v) => format!("[f64; {}] = {v:?}", v.len()),
-            other => panic!("unexpected {other:?}"),
-        };
-        text.push_str(&format!("pub const {}: {value};\n", c.name));
-    }
-    text
-}
-
 #[test]
 fn records_and_constants_are_complete_and_deterministic() {
     let settings = FitSettings::default();
     let first = absorption_fits(&settings).unwrap();
     let second = absorption_fits(&settings).unwrap();
+    let render = |fits| constants_source(&settings, fits);
     assert_eq!(render(&first), render(&second));
     println!("{}", render(&first));
     let keys: Vec<&str> = first.records.iter().map(|r| r.key.as_str()).collect();

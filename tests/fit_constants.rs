@@ -1,6 +1,8 @@
 //! The committed constants file is what the fitter generates now (the full regeneration runs
 //! in the normal test suite: a few seconds at the test profile's opt-level 3).
 
+#![cfg(feature = "fit")]
+
 use hairmath::fit::generate::{all_fits, constants_source};
 use hairmath::fit::FitSettings;
 

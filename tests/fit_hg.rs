@@ -2,6 +2,8 @@
 //! scan, recovery of a known g, convergence and minimality, the reading that reproduces the
 //! printed values, and the closed forms for shaders within their stated error.
 
+#![cfg(feature = "fit")]
+
 use hairmath::fit::constants::{
     GERARD_HG_G_LITERAL, GERARD_HG_G_LITERAL_POLYNOMIAL_MAX_ERROR,
     HG_G_NORMALISED_POLYNOMIAL_MAX_ERROR,

@@ -69,6 +69,30 @@ pub const HG_G_NORMALISED_POLYNOMIAL_MAX_ERROR: f64 = 1.10000000e-4;
 /// Largest |g_fit - g_printed| at this c: 2.72e-4.
 pub const GERARD_HG_REPRODUCING_WIDTH_SCALE: f64 = 1.37918041e0;
 
+/// Exponents k of exp(-k sigma_a) approximating the TT lobe's absorption E_p(sigma_a)/E_p(0) (Gerard, Fast Real-Time Shading for Polygonal Hair, prints k = 4), refitted for eta = 1.550.
+/// E_p = 1/2 int_{-1}^{1} A_p(h) dh (Chiang 2016 attenuations; hairmath::fit::absorption_exponent); sigma_a per unit fibre radius.
+/// Order: [Marschner 2003 exponent at theta = 0, Marschner averaged over directions (uniform in solid angle), exact chord at theta = 0, chord averaged].
+/// Fit: least squares on sigma_a in [0, 2], argmin Brent. Errors: RMS over sigma_a in [0, 2] of |exp(-k sigma_a) - E_p(sigma_a)/E_p(0)| (64-node composite Gauss-Legendre in sigma_a).
+/// - tt.marschner.theta0: refit (k = 3.4428e0): RMS 1.681e-3, max 2.959e-3; Gerard eq. 12, 4 (k = 4.0000e0): RMS 2.747e-2, max 5.312e-2.
+/// - tt.marschner.averaged: refit (k = 3.8301e0): RMS 1.858e-3, max 3.491e-3; Gerard eq. 12, 4 (k = 4.0000e0): RMS 7.941e-3, max 1.440e-2.
+/// - tt.chord.theta0: refit (k = 1.8579e0): RMS 4.863e-4, max 6.983e-4; Gerard eq. 12, 4 (k = 4.0000e0): RMS 1.620e-1, max 2.747e-1.
+/// - tt.chord.averaged: refit (k = 2.0271e0): RMS 1.032e-3, max 1.549e-3; Gerard eq. 12, 4 (k = 4.0000e0): RMS 1.407e-1, max 2.439e-1.
+pub const GERARD_ABSORPTION_K_TT: [f64; 4] = [
+    3.44275057e0, 3.83012547e0, 1.85791091e0, 2.02714317e0,
+];
+
+/// Exponents k of exp(-k sigma_a) approximating the TRT lobe's absorption E_p(sigma_a)/E_p(0) (Gerard, Fast Real-Time Shading for Polygonal Hair, prints k = 5.5), refitted for eta = 1.550.
+/// E_p = 1/2 int_{-1}^{1} A_p(h) dh (Chiang 2016 attenuations; hairmath::fit::absorption_exponent); sigma_a per unit fibre radius.
+/// Order: [Marschner 2003 exponent at theta = 0, Marschner averaged over directions (uniform in solid angle), exact chord at theta = 0, chord averaged].
+/// Fit: least squares on sigma_a in [0, 2], argmin Brent. Errors: RMS over sigma_a in [0, 2] of |exp(-k sigma_a) - E_p(sigma_a)/E_p(0)| (64-node composite Gauss-Legendre in sigma_a).
+/// - trt.marschner.theta0: refit (k = 6.3681e0): RMS 1.919e-3, max 4.740e-3; Gerard eq. 13, 11/2 (k = 5.5000e0): RMS 2.125e-2, max 5.664e-2; Gerard eq. 8 printed, 8(1-3/(2eta^2)) (k = 3.0052e0): RMS 1.250e-1, max 2.705e-1; eq. 8 corrected, 8(1-3/(4eta^2)) (k = 5.5026e0): RMS 2.118e-2, max 5.647e-2.
+/// - trt.marschner.averaged: refit (k = 7.6521e0): RMS 2.198e-3, max 5.813e-3; Gerard eq. 13, 11/2 (k = 5.5000e0): RMS 4.547e-2, max 1.235e-1; Gerard eq. 8 printed, 8(1-3/(2eta^2)) (k = 3.0052e0): RMS 1.476e-1, max 3.317e-1; eq. 8 corrected, 8(1-3/(4eta^2)) (k = 5.5026e0): RMS 4.540e-2, max 1.234e-1.
+/// - trt.chord.theta0: refit (k = 3.5757e0): RMS 6.402e-4, max 1.191e-3; Gerard eq. 13, 11/2 (k = 5.5000e0): RMS 7.191e-2, max 1.562e-1; Gerard eq. 8 printed, 8(1-3/(2eta^2)) (k = 3.0052e0): RMS 3.387e-2, max 6.447e-2; eq. 8 corrected, 8(1-3/(4eta^2)) (k = 5.5026e0): RMS 7.198e-2, max 1.563e-1.
+/// - trt.chord.averaged: refit (k = 4.1177e0): RMS 1.363e-3, max 2.734e-3; Gerard eq. 13, 11/2 (k = 5.5000e0): RMS 4.669e-2, max 1.040e-1; Gerard eq. 8 printed, 8(1-3/(2eta^2)) (k = 3.0052e0): RMS 5.907e-2, max 1.165e-1; eq. 8 corrected, 8(1-3/(4eta^2)) (k = 5.5026e0): RMS 4.676e-2, max 1.042e-1.
+pub const GERARD_ABSORPTION_K_TRT: [f64; 4] = [
+    6.36811189e0, 7.65210789e0, 3.57567860e0, 4.11766493e0,
+];
+
 /// Axes of FROSTBITE_TT_GAUSSIAN_A/B (Tafuri 2019, Strand-based Hair Rendering in Frostbite (SIGGRAPH course), slides 18-19), eta = 1.55.
 /// Rows: theta_o in radians (0 to 80 degrees).
 pub const FROSTBITE_TT_THETA_O: [f64; 9] = [

@@ -5,14 +5,21 @@
 //! nine significant digits, far below every fit's error and tolerance, so the text does not
 //! depend on the last bits of the optimisers' arithmetic.
 
-use super::{frostbite, hg, ConstValue, FitError, FitOutput, FitSettings, GeneratedConst};
+use super::{
+    absorption_exponent, frostbite, hg, ConstValue, FitError, FitOutput, FitSettings,
+    GeneratedConst,
+};
 
 /// Every family of fits, in the order `hairmath fit` prints them.
 ///
 /// # Errors
 /// The first fit that fails.
 pub fn all_fits(settings: &FitSettings) -> Result<FitOutput, FitError> {
-    let families = [hg::hg_fits()?, frostbite::frostbite_fits(settings)?];
+    let families = [
+        hg::hg_fits()?,
+        absorption_exponent::absorption_fits(settings)?,
+        frostbite::frostbite_fits(settings)?,
+    ];
     let mut all = FitOutput::default();
     for family in families {
         all.records.extend(family.records);

@@ -13,6 +13,8 @@
 #[rustfmt::skip]
 pub mod constants;
 #[cfg(feature = "fit")]
+pub mod absorption_exponent;
+#[cfg(feature = "fit")]
 pub mod frostbite;
 #[cfg(feature = "fit")]
 pub mod generate;
@@ -25,8 +27,6 @@ mod optimise;
 pub use optimise::{
     is_coordinate_minimum, linear_least_squares, minimize, minimize_scalar, FitError, Minimum,
 };
-#[cfg(feature = "fit")]
-pub mod absorption_exponent;
 
 /// One regenerated constant: what a paper prints beside what hairmath fits, each with its
 /// error under one stated measure.
