@@ -516,4 +516,15 @@ fn fit_table_and_bad_eta() {
     assert!(out.contains("gerard.hg_g.literal.beta_10deg"));
     let o = hairmath(&["fit", "--eta", "0.9"], "");
     assert_fails_with(&o, &["eta", "(1, 3]"]);
+    let o = hairmath(&["fit", "--details"], "");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    for heading in [
+        "## Absorption exponents",
+        "## Frostbite Tt attenuation at h = 0.0000 (published)",
+        "## Frostbite Trt attenuation at h = 0.8660 (published)",
+        "## Frostbite TT Gaussians",
+    ] {
+        assert!(out.contains(heading), "{heading} missing");
+    }
 }

@@ -5,6 +5,8 @@ use std::io::{self, BufWriter, Write};
 use std::path::PathBuf;
 
 use clap::Args;
+use hairmath::fit::absorption_exponent::{absorption_report, TABLE_SIGMA_A};
+use hairmath::fit::frostbite::{frostbite_report, AttenuationErrorTable, TtGaussianTable};
 use hairmath::fit::generate::{all_fits, constants_source};
 use hairmath::fit::{ConstantFit, FitOutput, FitSettings};
 
@@ -23,6 +25,11 @@ pub struct FitArgs {
     /// src/fit/constants.rs, for eta = 1.55).
     #[arg(long)]
     write_constants: Option<PathBuf>,
+    /// After the table, print each family's error tables (markdown): the absorption
+    /// exponents' relative errors by sigma_a, Frostbite's single-offset attenuation errors over
+    /// (sigma_a, theta_d) and its per-slice Gaussian errors over (theta_o, beta_n).
+    #[arg(long, conflicts_with = "json")]
+    details: bool,
 }
 
 /// Runs every fit for the given settings.
@@ -43,6 +50,9 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
         writeln!(out, "{}", json(&output.records))?;
     } else {
         table(&mut out, &output.records)?;
+    }
+    if args.details {
+        details(&mut out, &settings)?;
     }
     out.flush()?;
     Ok(())
@@ -100,4 +110,96 @@ fn json(records: &[ConstantFit]) -> String {
         })
         .collect();
     serde_json::to_string_pretty(&rows).unwrap_or_else(|_| "[]".into())
+}
+
+fn params(e: impl std::fmt::Display) -> CliError {
+    CliError::Params(e.to_string())
+}
+
+/// The error tables behind the summary rows.
+fn details(out: &mut impl Write, settings: &FitSettings) -> Result<(), CliError> {
+    let absorption = absorption_report(settings).map_err(params)?;
+    writeln!(
+        out,
+        "\n## Absorption exponents: (e^(-k sigma_a) - E(sigma_a)/E(0)) / (E(sigma_a)/E(0))\n"
+    )?;
+    let header: Vec<String> = TABLE_SIGMA_A
+        .iter()
+        .map(|s| format!("sigma_a {s}"))
+        .collect();
+    writeln!(
+        out,
+        "| fit | exponent | k | RMS | max | {} |",
+        header.join(" | ")
+    )?;
+    writeln!(out, "|---|---|---|---|---|{}", "---|".repeat(header.len()))?;
+    for fit in &absorption.fits {
+        for e in &fit.errors {
+            let rel: Vec<String> = e.relative.iter().map(|r| format!("{r:+.3}")).collect();
+            writeln!(
+                out,
+                "| {} | {} | {:.4} | {:.2e} | {:.2e} | {} |",
+                fit.key(),
+                e.label,
+                e.k,
+                e.rms,
+                e.max_abs,
+                rel.join(" | ")
+            )?;
+        }
+    }
+    let frostbite = frostbite_report(settings).map_err(params)?;
+    for offset in [&frostbite.tt_offset, &frostbite.trt_offset] {
+        for (label, table) in [("published", &offset.published), ("refit", &offset.refit)] {
+            attenuation_table(out, label, table)?;
+        }
+    }
+    gaussian_table(out, &frostbite.tt_gaussian)?;
+    Ok(())
+}
+
+/// A Frostbite single-offset attenuation error table: rows sigma_a, columns theta_d.
+fn attenuation_table(
+    out: &mut impl Write,
+    label: &str,
+    table: &AttenuationErrorTable,
+) -> io::Result<()> {
+    writeln!(
+        out,
+        "\n## Frostbite {:?} attenuation at h = {:.4} ({label}): (A(h) - E) / E, RMS {:.3}\n",
+        table.path, table.h, table.rms
+    )?;
+    let columns: Vec<String> = table
+        .theta_d
+        .iter()
+        .map(|t| format!("{:.0} deg", t.to_degrees()))
+        .collect();
+    writeln!(out, "| sigma_a \\ theta_d | {} |", columns.join(" | "))?;
+    writeln!(out, "|---|{}", "---|".repeat(columns.len()))?;
+    for (sigma_a, row) in table.sigma_a.iter().zip(&table.relative_error) {
+        let cells: Vec<String> = row.iter().map(|e| format!("{e:+.3}")).collect();
+        writeln!(out, "| {sigma_a} | {} |", cells.join(" | "))?;
+    }
+    Ok(())
+}
+
+/// RMS error of each TT Gaussian slice relative to its peak: rows theta_o, columns beta_n.
+fn gaussian_table(out: &mut impl Write, table: &TtGaussianTable) -> io::Result<()> {
+    writeln!(
+        out,
+        "\n## Frostbite TT Gaussians a exp(-b (|phi| - pi)^2): RMS error / peak per slice\n"
+    )?;
+    let columns: Vec<String> = table.beta_n.iter().map(|b| format!("{b}")).collect();
+    writeln!(out, "| theta_o \\ beta_n | {} |", columns.join(" | "))?;
+    writeln!(out, "|---|{}", "---|".repeat(columns.len()))?;
+    for (theta_o, row) in table.theta_o.iter().zip(&table.slices) {
+        let cells: Vec<String> = row.iter().map(|f| format!("{:.1e}", f.rms_error)).collect();
+        writeln!(
+            out,
+            "| {:.0} deg | {} |",
+            theta_o.to_degrees(),
+            cells.join(" | ")
+        )?;
+    }
+    Ok(())
 }
