@@ -2,7 +2,7 @@
 //! with eta = 1.55: do not edit by hand. Each constant's documentation says what it
 //! approximates, the metric, the domain and the measured error; `hairmath::fit` has the
 //! fits and `tests/fit_constants.rs` checks that this file is up to date.
-#![allow(clippy::excessive_precision, clippy::unreadable_literal)]
+#![allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal)]
 
 /// g(beta) for beta = 1, 2, ..., 45 degrees (index 0 is 1 degree).
 /// Fit: printed HG (1/(4 pi)) vs unit-area Gaussian(sd beta), L2 over theta in [-pi/2, pi/2], by Brent's method.

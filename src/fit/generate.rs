@@ -35,7 +35,7 @@ pub fn constants_source(settings: &FitSettings, fits: &FitOutput) -> String {
          //! with eta = {}: do not edit by hand. Each constant's documentation says what it\n\
          //! approximates, the metric, the domain and the measured error; `hairmath::fit` has the\n\
          //! fits and `tests/fit_constants.rs` checks that this file is up to date.\n\
-         #![allow(clippy::excessive_precision, clippy::unreadable_literal)]\n",
+         #![allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal)]\n",
         settings.eta
     );
     for constant in &fits.constants {
