@@ -368,6 +368,9 @@ pub fn fit_d_trt() -> Result<ExpCosFit, FitError> {
 /// The smallest |phi| at which the TT root exists: `|Phi(1, +-1) - 2 pi k| = 2 asin(1/eta')`
 /// (Phi(1, h) = 2 gamma_t - 2 gamma_i + pi, Marschner 2003 eq. 3, at h = 1: gamma_i = pi/2,
 /// gamma_t = asin(1/eta')).
+///
+/// # Errors
+/// `eta_prime <= 1` or not finite.
 pub fn h_tt_min_phi(eta_prime: f64) -> Result<f64, FitError> {
     let eta_prime = ParamError::check("eta_prime", eta_prime, "must be > 1", |e| e > 1.0)?;
     Ok(min_phi(1.0 / eta_prime))
