@@ -93,6 +93,40 @@ pub const GERARD_ABSORPTION_K_TRT: [f64; 4] = [
     6.36811189e0, 7.65210789e0, 3.57567860e0, 4.11766493e0,
 ];
 
+/// `eta' ~ a / cos theta_d + b cos theta_d` (Karis 2016 (UE4 HairBsdf.ush)), refitted.
+/// Approximates eta' = sqrt(eta^2 - sin^2 theta_d) / cos theta_d at eta = 1.55 (minimax refit, Nelder-Mead).
+/// Metric: max |approx / exact - 1| over theta_d in [0, 90 deg) with the grazing limit.
+/// Error of this refit: 4.513e-3; of Karis' published [1.19, 0.36]: 6.751e-3.
+/// Karis claims error < 0.68%; the published constants stay below it up to theta_d = 9.000e1 deg (worst at 4.498e1 deg).
+pub const KARIS_ETA_PRIME: [f64; 2] = [
+    1.18961678e0, 3.67378675e-1,
+];
+
+/// `D ~ exp(a cos phi + b)` (Karis 2016 (UE4 HairBsdf.ush)), refitted.
+/// Approximates D_TT = D(phi, 0.35, pi) (least-squares refit, Nelder-Mead).
+/// Metric: RMS error over phi in [0, pi] / the reference's peak.
+/// Error of this refit: 9.955e-3; of Karis' published [-3.65, -3.98]: 1.316e-2.
+pub const KARIS_D_TT: [f64; 2] = [
+    -3.47141378e0, -3.82753911e0,
+];
+
+/// `D ~ exp(a cos phi + b)` (Karis 2016 (UE4 HairBsdf.ush)), refitted.
+/// Approximates D_TRT = 3/4 D(phi, 0.15, 0) (least-squares refit, Nelder-Mead).
+/// Metric: RMS error over phi in [0, pi] / the reference's peak.
+/// Error of this refit: 1.035e-2; of Karis' published [17, -16.78]: 1.429e-2.
+pub const KARIS_D_TRT: [f64; 2] = [
+    1.77451764e1, -1.75499604e1,
+];
+
+/// `h_TT ~ (1 + a (c1 - c2 cos phi)) cos(phi/2), a = 1/eta'` (Karis 2016 (UE4 HairBsdf.ush)), refitted.
+/// Approximates |h_TT| = cos(phi/2) / sqrt(1 + a^2 - 2 a sin(|phi|/2)), the root of Phi(1, h) = phi, at eta = 1.55 (linear least squares).
+/// Metric: RMS |h - h_exact| over theta_d in [0, 80 deg] x |phi| in [2 asin(1/eta'), pi].
+/// Error of this refit: 3.701e-2; of Karis' published [0.6, 0.8]: 6.646e-2.
+/// Maximum |h - h_exact| of this refit: 8.890e-2; of the published constants: 1.543e-1.
+pub const KARIS_H_TT: [f64; 2] = [
+    7.48362401e-1, 1.08647371e0,
+];
+
 /// Axes of FROSTBITE_TT_GAUSSIAN_A/B (Tafuri 2019, Strand-based Hair Rendering in Frostbite (SIGGRAPH course), slides 18-19), eta = 1.55.
 /// Rows: theta_o in radians (0 to 80 degrees).
 pub const FROSTBITE_TT_THETA_O: [f64; 9] = [

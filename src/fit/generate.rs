@@ -6,7 +6,7 @@
 //! depend on the last bits of the optimisers' arithmetic.
 
 use super::{
-    absorption_exponent, frostbite, hg, ConstValue, FitError, FitOutput, FitSettings,
+    absorption_exponent, frostbite, hg, karis, ConstValue, FitError, FitOutput, FitSettings,
     GeneratedConst,
 };
 
@@ -18,6 +18,7 @@ pub fn all_fits(settings: &FitSettings) -> Result<FitOutput, FitError> {
     let families = [
         hg::hg_fits()?,
         absorption_exponent::absorption_fits(settings)?,
+        karis::karis_fits(settings)?,
         frostbite::frostbite_fits(settings)?,
     ];
     let mut all = FitOutput::default();

@@ -20,6 +20,8 @@ pub mod frostbite;
 pub mod generate;
 #[cfg(feature = "fit")]
 pub mod hg;
+#[cfg(feature = "fit")]
+pub mod karis;
 
 #[cfg(feature = "fit")]
 mod optimise;
@@ -27,8 +29,6 @@ mod optimise;
 pub use optimise::{
     is_coordinate_minimum, linear_least_squares, minimize, minimize_scalar, FitError, Minimum,
 };
-#[cfg(feature = "fit")]
-pub mod karis;
 
 /// One regenerated constant: what a paper prints beside what hairmath fits, each with its
 /// error under one stated measure.
