@@ -17,7 +17,7 @@
 //! Fresnel term at the true angle of incidence.
 
 use super::{
-    is_coordinate_minimum, linear_least_squares, minimize, minimize_scalar, ConstValue,
+    check_eta, is_coordinate_minimum, linear_least_squares, minimize, minimize_scalar, ConstValue,
     ConstantFit, FitError, FitOutput, FitSettings, GeneratedConst, Minimum,
 };
 use crate::absorption::{segment_transmittance, PathLength};
@@ -48,15 +48,6 @@ pub const PUBLISHED_TT_OFFSET_H: f64 = 0.0;
 pub const PUBLISHED_TRT_OFFSET_H: f64 = 0.866_025_403_784_438_6;
 
 const SOURCE: &str = "Tafuri 2019, Strand-based Hair Rendering in Frostbite (SIGGRAPH course)";
-
-fn check_eta(eta: f64) -> Result<f64, ParamError> {
-    ParamError::check(
-        "eta",
-        eta,
-        "the fibre's refractive index must be in (1, 3]",
-        |v| v > 1.0 && v <= 3.0,
-    )
-}
 
 fn check_theta(name: &'static str, theta: f64) -> Result<f64, ParamError> {
     ParamError::check(name, theta, "inclination must be in [-pi/2, pi/2]", |v| {

@@ -104,12 +104,21 @@ impl FitSettings {
     /// # Errors
     /// `eta` outside (1, 3].
     pub fn new(eta: f64) -> Result<Self, crate::error::ParamError> {
-        let eta = crate::error::ParamError::check(
-            "eta",
-            eta,
-            "the fibre's refractive index must be in (1, 3]",
-            |v| v > 1.0 && v <= 3.0,
-        )?;
-        Ok(FitSettings { eta })
+        Ok(FitSettings {
+            eta: check_eta(eta)?,
+        })
     }
+}
+
+/// The refractive indices the fits accept: (1, 3].
+///
+/// # Errors
+/// [`crate::error::ParamError::OutOfRange`] naming `eta` otherwise.
+pub(crate) fn check_eta(eta: f64) -> Result<f64, crate::error::ParamError> {
+    crate::error::ParamError::check(
+        "eta",
+        eta,
+        "the fibre's refractive index must be in (1, 3]",
+        |v| v > 1.0 && v <= 3.0,
+    )
 }

@@ -70,6 +70,14 @@ impl<F: Fn(&[f64]) -> f64> CostFunction for Vector<F> {
     }
 }
 
+/// argmin's own failures (an invalid solver setting, a panicking loss) as [`FitError::Degenerate`].
+fn argmin_failure(what: &str) -> impl Fn(argmin::core::Error) -> FitError + '_ {
+    move |e| FitError::Degenerate {
+        what: what.into(),
+        reason: e.to_string(),
+    }
+}
+
 fn converged(
     what: &str,
     status: &TerminationStatus,
@@ -123,10 +131,7 @@ pub fn minimize_scalar(
     let result = Executor::new(Scalar(loss), solver)
         .configure(|state| state.max_iters(MAX_ITERATIONS))
         .run()
-        .map_err(|e| FitError::Degenerate {
-            what: what.into(),
-            reason: e.to_string(),
-        })?;
+        .map_err(argmin_failure(what))?;
     let state = result.state();
     let best = state.get_best_param().copied().unwrap_or(f64::NAN);
     converged(
@@ -159,17 +164,11 @@ pub fn minimize(
     }
     let solver = NelderMead::new(simplex)
         .with_sd_tolerance(loss_tol)
-        .map_err(|e| FitError::Degenerate {
-            what: what.into(),
-            reason: e.to_string(),
-        })?;
+        .map_err(argmin_failure(what))?;
     let result = Executor::new(Vector(loss), solver)
         .configure(|state| state.max_iters(MAX_ITERATIONS))
         .run()
-        .map_err(|e| FitError::Degenerate {
-            what: what.into(),
-            reason: e.to_string(),
-        })?;
+        .map_err(argmin_failure(what))?;
     let state = result.state();
     let best = state.get_best_param().cloned().unwrap_or_default();
     converged(
