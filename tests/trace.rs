@@ -11,9 +11,9 @@
 
 use hairmath::absorption::{segment_transmittance, PathLength};
 use hairmath::azimuthal::{
-    attenuations, attenuations_from_fresnel, exit_angle, exit_angle_of_offset, logistic,
-    logistic_cdf, refracted_offset, sample_trimmed_logistic, sample_wrapped_gaussian,
-    trimmed_logistic, trimmed_mass, wrapped_gaussian,
+    attenuations, attenuations_at_offset, attenuations_from_fresnel, exit_angle,
+    exit_angle_of_offset, logistic, logistic_cdf, refracted_offset, sample_trimmed_logistic,
+    sample_wrapped_gaussian, trimmed_logistic, trimmed_mass, wrapped_gaussian,
 };
 use hairmath::bcsdf::{ChiangFarField, ChiangHair, ChiangParams, FarFieldRule, CHIANG_CONSTANTS};
 use hairmath::fresnel::{
@@ -656,13 +656,20 @@ traced_tests! {
         }
     }
 
-    azimuthal_attenuations ["attenuations_from_fresnel", "attenuations"] {
+    azimuthal_attenuations ["attenuations_from_fresnel", "attenuations", "attenuations_at_offset"] {
         case!("attenuations_from_fresnel", scalars(&[UNIT, UNIT]), |x| {
             attenuations_from_fresnel(x[0], x[1]).to_vec()
         });
         case!("attenuations", scalars(&[UNIT, ETA, SIN, UNIT]), |x| {
             attenuations(x[0], x[1], x[2], x[3]).to_vec()
         });
+        // The path model is a per-shader constant: one trace per variant.
+        for path in [PathLength::Chord, PathLength::Marschner2003] {
+            let name = format!("attenuations_at_offset({path:?})");
+            case!(name, scalars(&[SIN, SIN, UNIT, ETA, SIGMA_A]), |x| {
+                attenuations_at_offset(x[0], x[1], x[2], x[3], x[4], path).to_vec()
+            });
+        }
     }
     lut_axis_cell ["axis_cell"] {
         // Inside, at and beyond both ends of a 17-sample axis over [-1.5, 2.5].

@@ -1,3 +1,5 @@
+use super::refracted_offset;
+use crate::absorption::{segment_transmittance, PathLength};
 use crate::fresnel::fresnel_dielectric;
 use crate::real::{safe_sqrt, Real};
 
@@ -27,6 +29,29 @@ pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES] {
 pub fn attenuations<R: Real>(cos_theta_o: R, eta: R, h: R, t: R) -> [R; LOBES] {
     let cos_gamma_o = safe_sqrt(R::c(1.0) - h * h);
     attenuations_from_fresnel(fresnel_dielectric(cos_theta_o * cos_gamma_o, eta), t)
+}
+
+/// Attenuations `[A_0, A_1, A_2, A_3+]` at offset `h` for a ray inclined at theta (given by
+/// `sin_theta` and `cos_theta >= 0`) with absorption `sigma_a` per unit radius and internal path
+/// model `path`, from the geometry alone: cos(theta_t) by Snell's law (`sin theta / eta`),
+/// sin(gamma_t) by Bravais' index ([`refracted_offset`]), the segment transmittance
+/// ([`segment_transmittance`]) and [`attenuations`] (Chiang et al. 2016, eqs. 3 and 6). For
+/// code that needs `A_p(h)` alone; [`crate::bcsdf::ChiangHair`] fuses the same steps with its
+/// exit angles.
+pub fn attenuations_at_offset<R: Real>(
+    h: R,
+    sin_theta: R,
+    cos_theta: R,
+    eta: R,
+    sigma_a: R,
+    path: PathLength,
+) -> [R; LOBES] {
+    let sin_t = sin_theta / eta;
+    let cos_t = safe_sqrt(R::c(1.0) - sin_t * sin_t);
+    let sin_gamma_t = refracted_offset(h, eta, sin_theta, cos_theta);
+    let cos_gamma_t = safe_sqrt(R::c(1.0) - sin_gamma_t * sin_gamma_t);
+    let t = segment_transmittance(sigma_a, cos_gamma_t, cos_t, path);
+    attenuations(cos_theta, eta, h, t)
 }
 
 #[cfg(test)]

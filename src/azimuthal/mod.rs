@@ -7,7 +7,7 @@ mod distribution;
 mod exit_angle;
 mod marschner;
 
-pub use attenuation::{attenuations, attenuations_from_fresnel, LOBES};
+pub use attenuation::{attenuations, attenuations_at_offset, attenuations_from_fresnel, LOBES};
 pub use distribution::{
     logistic, logistic_cdf, sample_trimmed_logistic, sample_wrapped_gaussian, trimmed_logistic,
     trimmed_mass, wrapped_gaussian, WRAPPED_GAUSSIAN_TERMS,

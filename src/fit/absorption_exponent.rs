@@ -20,15 +20,14 @@
 //! to `E_p(sigma_a) / E_p(0)` over sigma_a in [0, 2], for both path-length forms and for two
 //! direction settings ([`Directions`]).
 
-use crate::absorption::{segment_transmittance, PathLength};
-use crate::azimuthal::{attenuations, refracted_offset};
+use crate::absorption::PathLength;
+use crate::azimuthal::attenuations_at_offset;
 use crate::error::ParamError;
 use crate::fit::{
     minimize_scalar, ConstValue, ConstantFit, FitError, FitOutput, FitSettings, GeneratedConst,
     Minimum,
 };
 use crate::quadrature::gauss_legendre;
-use crate::real::safe_sqrt;
 use core::f64::consts::FRAC_PI_2;
 
 /// The lobes Gerard attenuates: TT (one internal segment) and TRT (two).
@@ -183,7 +182,7 @@ fn quarter_circle_rule(n: usize) -> Vec<(f64, f64)> {
 /// [E_TT, E_TRT] of a ray inclined at theta (sine and cosine, cos >= 0), unvalidated:
 /// `int_0^{pi/2} A_p(sin gamma) cos gamma d gamma`, which is `1/2 int_{-1}^{1} A_p(h) dh`.
 /// The geometry is [`crate::bcsdf::ChiangHair`]'s: cos theta_t from Snell's law, sin gamma_t
-/// from [`refracted_offset`] (Bravais), the entry Fresnel term at cos theta cos gamma.
+/// from [`crate::azimuthal::refracted_offset`] (Bravais), the entry Fresnel term at cos theta cos gamma.
 fn energies_at(
     eta: f64,
     sigma_a: f64,
@@ -191,15 +190,10 @@ fn energies_at(
     (sin_theta, cos_theta): (f64, f64),
     rule: &EnergyRule,
 ) -> [f64; 2] {
-    let sin_t = sin_theta / eta;
-    let cos_t = safe_sqrt(1.0 - sin_t * sin_t);
     let mut sum = [0.0; 2];
     for &(gamma, w) in &rule.gamma {
         let (h, cos_gamma) = gamma.sin_cos();
-        let sin_gamma_t = refracted_offset(h, eta, sin_theta, cos_theta);
-        let cos_gamma_t = safe_sqrt(1.0 - sin_gamma_t * sin_gamma_t);
-        let t = segment_transmittance(sigma_a, cos_gamma_t, cos_t, path);
-        let a = attenuations(cos_theta, eta, h, t);
+        let a = attenuations_at_offset(h, sin_theta, cos_theta, eta, sigma_a, path);
         for (s, lobe) in sum.iter_mut().zip(Lobe::ALL) {
             *s += w * cos_gamma * a[lobe.index()];
         }

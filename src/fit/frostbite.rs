@@ -13,19 +13,19 @@
 //!
 //! Conventions are hairmath's (README, "Conventions"): `phi = phi_i - phi_o` as in pbrt, so the
 //! TT lobe peaks at |phi| = pi; sigma_a per unit fibre radius with the exact chord
-//! `2 cos(gamma_t) / cos(theta_t)`; Chiang's attenuation ([`attenuations`]) with the entry
+//! `2 cos(gamma_t) / cos(theta_t)`; Chiang's attenuation ([`crate::azimuthal::attenuations`]) with the entry
 //! Fresnel term at the true angle of incidence.
 
 use super::{
     check_eta, is_coordinate_minimum, linear_least_squares, minimize, minimize_scalar, ConstValue,
     ConstantFit, FitError, FitOutput, FitSettings, GeneratedConst, Minimum,
 };
-use crate::absorption::{segment_transmittance, PathLength};
-use crate::azimuthal::{attenuations, exit_angle_of_offset, refracted_offset, trimmed_logistic};
+use crate::absorption::PathLength;
+use crate::azimuthal::{attenuations_at_offset, exit_angle_of_offset, trimmed_logistic};
 use crate::bcsdf::logistic_scale;
 use crate::error::ParamError;
 use crate::quadrature::{gauss_legendre, integrate};
-use crate::real::{safe_sqrt, wrap_angle};
+use crate::real::wrap_angle;
 use core::f64::consts::{FRAC_PI_2, PI};
 
 /// theta_o axis of the TT Gaussian table, degrees (0, 10, ..., 80).
@@ -358,17 +358,12 @@ impl Transmitted {
     }
 }
 
-/// Chiang's attenuation `A_p(h)` (Chiang et al. 2016, eqs. 3 and 6; [`attenuations`]) of a ray
+/// Chiang's attenuation `A_p(h)` (Chiang et al. 2016, eqs. 3 and 6; [`attenuations_at_offset`]) of a ray
 /// inclined at `theta` (radians) with absorption `sigma_a` per unit radius and the chord
-/// transmittance `exp(-sigma_a 2 cos(gamma_t) / cos(theta_t))` ([`segment_transmittance`]).
+/// transmittance `exp(-sigma_a 2 cos(gamma_t) / cos(theta_t))` ([`crate::absorption::segment_transmittance`]).
 pub fn offset_attenuation(path: Transmitted, h: f64, sigma_a: f64, theta: f64, eta: f64) -> f64 {
     let (sin_o, cos_o) = theta.sin_cos();
-    let sin_t = sin_o / eta;
-    let cos_t = safe_sqrt(1.0 - sin_t * sin_t);
-    let sin_gamma_t = refracted_offset(h, eta, sin_o, cos_o);
-    let cos_gamma_t = safe_sqrt(1.0 - sin_gamma_t * sin_gamma_t);
-    let t = segment_transmittance(sigma_a, cos_gamma_t, cos_t, PathLength::Chord);
-    attenuations(cos_o, eta, h, t)[path.p()]
+    attenuations_at_offset(h, sin_o, cos_o, eta, sigma_a, PathLength::Chord)[path.p()]
 }
 
 /// The h-average `E_p = 1/2 int_{-1}^{1} A_p(h) dh` that the single offset replaces, as
