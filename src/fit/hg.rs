@@ -23,7 +23,7 @@ use super::{
     GeneratedConst, Minimum,
 };
 use crate::error::ParamError;
-use crate::lobe::{hg_gerard_printed, HenyeyGreenstein};
+use crate::lobe::{gaussian_lobe, hg_gerard_printed, HenyeyGreenstein};
 use crate::quadrature::{gauss_legendre, integrate};
 use core::f64::consts::{FRAC_PI_2, PI};
 
@@ -106,9 +106,7 @@ const PANELS: usize = 480;
 /// minimising Gerard's L2 norm (the divisor does not depend on g). Infinite for `|g| >= 1`.
 pub fn hg_l2_residual(reading: HgReading, g: f64, beta: f64) -> f64 {
     let sigma = reading.gaussian_sigma(beta);
-    let gaussian =
-        move |theta: f64| (-0.5 * (theta / sigma).powi(2)).exp() / (sigma * (2.0 * PI).sqrt());
-    relative_residual(reading, g, &gaussian, PANELS)
+    relative_residual(reading, g, &|theta| gaussian_lobe(sigma, theta), PANELS)
 }
 
 /// `|| G_g - target ||_2 / || target ||_2` over the reading's domain, for an even `target`
@@ -185,15 +183,8 @@ fn check_reading(reading: HgReading) -> Result<(), ParamError> {
 /// converge.
 pub fn fit_hg_g(reading: HgReading, beta: f64) -> Result<HgFit, FitError> {
     let beta = check_beta(beta)?;
-    check_reading(reading)?;
-    let what = format!("HG g at beta = {beta}");
-    let minimum = minimize_scalar(
-        &what,
-        |g| hg_l2_residual(reading, g, beta),
-        0.0,
-        0.995,
-        1e-10,
-    )?;
+    let sigma = reading.gaussian_sigma(beta);
+    let minimum = fit_hg_g_to_target(reading, &|theta| gaussian_lobe(sigma, theta))?;
     Ok(HgFit {
         beta,
         g: minimum.params[0],
@@ -428,7 +419,7 @@ mod tests {
             for &(deg, g) in &[(1.0_f64, 0.86), (10.0, 0.75), (45.0, 0.5)] {
                 let beta = deg.to_radians();
                 let sigma = reading.gaussian_sigma(beta);
-                let gaussian = |t: f64| (-0.5 * (t / sigma).powi(2)).exp() / sigma;
+                let gaussian = |t: f64| gaussian_lobe(sigma, t);
                 let a = relative_residual(reading, g, &gaussian, PANELS);
                 let b = relative_residual(reading, g, &gaussian, 2 * PANELS);
                 assert!((a - b).abs() <= 1e-9 * b, "{reading:?} {deg}: {a} vs {b}");
