@@ -2,6 +2,7 @@
 //! a colour or from melanin concentrations, and the transmittance of one internal path.
 
 use crate::error::ParamError;
+use crate::params::AzimuthalRoughness;
 use crate::real::Real;
 
 /// Absorption coefficient per unit fibre radius, one value per linear RGB channel.
@@ -13,60 +14,84 @@ pub const EUMELANIN_SIGMA_A: Rgb = [0.419, 0.697, 1.37];
 /// Pheomelanin absorption per unit concentration and radius (same source).
 pub const PHEOMELANIN_SIGMA_A: Rgb = [0.187, 0.4, 1.05];
 
-/// Checks an absorption coefficient: every channel finite and >= 0.
-///
-/// # Errors
-/// [`ParamError::OutOfRange`] naming `sigma_a` and the first offending value.
-pub fn validate_sigma_a(sigma_a: Rgb) -> Result<Rgb, ParamError> {
-    for &s in &sigma_a {
-        ParamError::check(
-            "sigma_a",
-            s,
-            "absorption must be finite and >= 0 in every channel",
-            |v| v >= 0.0,
-        )?;
-    }
-    Ok(sigma_a)
-}
+/// Absorption sigma_a per unit fibre radius, validated: every channel finite and >= 0. The one
+/// type every model, baker and fit takes for absorption, whichever way it was specified
+/// (directly, from melanin, or from a colour).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Absorption(Rgb);
 
-/// sigma_a from melanin concentrations: `eu * EUMELANIN_SIGMA_A + pheo * PHEOMELANIN_SIGMA_A`
-/// (Chiang et al. 2016, section 4.2). Typical human hair has `eu` in [0, 8].
-///
-/// # Errors
-/// A concentration that is negative or not finite.
-pub fn sigma_a_from_melanin(eumelanin: f64, pheomelanin: f64) -> Result<Rgb, ParamError> {
-    let allowed = "melanin concentrations must be finite and >= 0";
-    let eu = ParamError::check("eumelanin", eumelanin, allowed, |v| v >= 0.0)?;
-    let ph = ParamError::check("pheomelanin", pheomelanin, allowed, |v| v >= 0.0)?;
-    Ok(core::array::from_fn(|c| {
-        eu * EUMELANIN_SIGMA_A[c] + ph * PHEOMELANIN_SIGMA_A[c]
-    }))
-}
+impl Absorption {
+    /// No absorption (a white fibre: the white-furnace configuration).
+    pub const NONE: Absorption = Absorption([0.0; 3]);
 
-/// sigma_a that gives a multiply-scattered hair volume approximately the colour `color`, for
-/// azimuthal roughness `beta_n` (Chiang et al. 2016, section 4.2, the inversion pbrt-v4 uses):
-/// `sigma_a = (ln c / (5.969 - 0.215 b + 2.532 b^2 - 10.73 b^3 + 5.574 b^4 + 0.245 b^5))^2`.
-///
-/// # Errors
-/// A colour channel outside (0, 1] (0 would need infinite absorption), or `beta_n` outside (0, 1].
-pub fn sigma_a_from_color(color: Rgb, beta_n: f64) -> Result<Rgb, ParamError> {
-    let b = ParamError::check("beta_n", beta_n, "must be in (0, 1]", |v| {
-        v > 0.0 && v <= 1.0
-    })?;
-    let denominator = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * b.powi(3)
-        + 5.574 * b.powi(4)
-        + 0.245 * b.powi(5);
-    let mut out = [0.0; 3];
-    for (o, &c) in out.iter_mut().zip(&color) {
-        let c = ParamError::check(
-            "color",
-            c,
-            "colour channels must be in (0, 1] (linear RGB)",
-            |v| v > 0.0 && v <= 1.0,
-        )?;
-        *o = (c.ln() / denominator).powi(2);
+    /// sigma_a given per linear RGB channel.
+    ///
+    /// # Errors
+    /// [`ParamError::OutOfRange`] naming `sigma_a` and the first negative or non-finite value.
+    pub fn new(sigma_a: Rgb) -> Result<Self, ParamError> {
+        for &s in &sigma_a {
+            ParamError::check(
+                "sigma_a",
+                s,
+                "absorption must be finite and >= 0 in every channel",
+                |v| v >= 0.0,
+            )?;
+        }
+        Ok(Absorption(sigma_a))
     }
-    Ok(out)
+
+    /// The same sigma_a in every channel (checked as [`Absorption::new`]).
+    ///
+    /// # Errors
+    /// As [`Absorption::new`].
+    pub fn grey(sigma_a: f64) -> Result<Self, ParamError> {
+        Self::new([sigma_a; 3])
+    }
+
+    /// sigma_a from melanin concentrations: `eu * EUMELANIN_SIGMA_A + pheo *
+    /// PHEOMELANIN_SIGMA_A` (Chiang et al. 2016, section 4.2). Typical human hair has `eu` in
+    /// [0, 8].
+    ///
+    /// # Errors
+    /// A concentration that is negative or not finite.
+    pub fn from_melanin(eumelanin: f64, pheomelanin: f64) -> Result<Self, ParamError> {
+        let allowed = "melanin concentrations must be finite and >= 0";
+        let eu = ParamError::check("eumelanin", eumelanin, allowed, |v| v >= 0.0)?;
+        let ph = ParamError::check("pheomelanin", pheomelanin, allowed, |v| v >= 0.0)?;
+        Self::new(core::array::from_fn(|c| {
+            eu * EUMELANIN_SIGMA_A[c] + ph * PHEOMELANIN_SIGMA_A[c]
+        }))
+    }
+
+    /// sigma_a that gives a multiply-scattered hair volume approximately the colour `color`,
+    /// for azimuthal roughness `beta_n` (Chiang et al. 2016, section 4.2, the inversion pbrt-v4
+    /// uses):
+    /// `sigma_a = (ln c / (5.969 - 0.215 b + 2.532 b^2 - 10.73 b^3 + 5.574 b^4 + 0.245 b^5))^2`.
+    ///
+    /// # Errors
+    /// A colour channel outside (0, 1] (0 would need infinite absorption).
+    pub fn from_color(color: Rgb, beta_n: AzimuthalRoughness) -> Result<Self, ParamError> {
+        let b = beta_n.get();
+        let denominator = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * b.powi(3)
+            + 5.574 * b.powi(4)
+            + 0.245 * b.powi(5);
+        let mut out = [0.0; 3];
+        for (o, &c) in out.iter_mut().zip(&color) {
+            let c = ParamError::check(
+                "color",
+                c,
+                "colour channels must be in (0, 1] (linear RGB)",
+                |v| v > 0.0 && v <= 1.0,
+            )?;
+            *o = (c.ln() / denominator).powi(2);
+        }
+        Self::new(out)
+    }
+
+    /// sigma_a per channel.
+    pub fn rgb(self) -> Rgb {
+        self.0
+    }
 }
 
 /// How the length of the internal path is modelled.
@@ -82,20 +107,27 @@ pub enum PathLength {
     Marschner2003,
 }
 
+/// The length, in fibre radii, of one internal segment under the path model `path`, given
+/// cos(gamma_t) and 1 / cos(theta_t) of the refracted ray: `2 cos(gamma_t) / cos(theta_t)`
+/// for the chord, `4 cos^2(gamma_t) / cos(theta_t)` for Marschner's exponent (see
+/// [`PathLength`]).
+pub fn segment_length<R: Real>(cos_gamma_t: R, inv_cos_theta_t: R, path: PathLength) -> R {
+    match path {
+        PathLength::Chord => R::c(2.0) * cos_gamma_t * inv_cos_theta_t,
+        PathLength::Marschner2003 => R::c(4.0) * cos_gamma_t * cos_gamma_t * inv_cos_theta_t,
+    }
+}
+
 /// Transmittance `exp(-sigma_a * length)` of one internal segment, `length` from
-/// [`PathLength`], given cos(gamma_t) and cos(theta_t) of the refracted ray. `cos_theta_t` is
-/// positive for every eta > 1 (it is at least sqrt(1 - 1/eta^2)).
+/// [`segment_length`], given cos(gamma_t) and cos(theta_t) of the refracted ray. `cos_theta_t`
+/// is positive for every eta > 1 (it is at least sqrt(1 - 1/eta^2)).
 pub fn segment_transmittance<R: Real>(
     sigma_a: R,
     cos_gamma_t: R,
     cos_theta_t: R,
     path: PathLength,
 ) -> R {
-    let per_radius = match path {
-        PathLength::Chord => R::c(2.0) * cos_gamma_t,
-        PathLength::Marschner2003 => R::c(4.0) * cos_gamma_t * cos_gamma_t,
-    };
-    (-sigma_a * per_radius / cos_theta_t).exp()
+    (-sigma_a * segment_length(cos_gamma_t, R::c(1.0) / cos_theta_t, path)).exp()
 }
 
 #[cfg(test)]
@@ -104,23 +136,26 @@ mod tests {
 
     #[test]
     fn melanin_is_linear_and_validated() {
-        let s = sigma_a_from_melanin(1.3, 0.0).unwrap();
+        let s = Absorption::from_melanin(1.3, 0.0).unwrap().rgb();
         assert!((s[0] - 1.3 * 0.419).abs() < 1e-15);
-        assert!(sigma_a_from_melanin(-0.1, 0.0).is_err());
-        assert!(sigma_a_from_melanin(0.0, f64::NAN).is_err());
+        assert!(Absorption::from_melanin(-0.1, 0.0).is_err());
+        assert!(Absorption::from_melanin(0.0, f64::NAN).is_err());
     }
 
     #[test]
     fn color_inversion_round_trips_and_rejects_black() {
         let b = 0.3;
-        let sa = sigma_a_from_color([0.5, 0.25, 1.0], b).unwrap();
+        let beta_n = AzimuthalRoughness::new(b).unwrap();
+        let sa = Absorption::from_color([0.5, 0.25, 1.0], beta_n)
+            .unwrap()
+            .rgb();
         assert_eq!(sa[2], 0.0);
         let d = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * b * b * b
             + 5.574 * b.powi(4)
             + 0.245 * b.powi(5);
         // Inverting the fit: c = exp(-sqrt(sigma_a) * d).
         assert!(((-sa[0].sqrt() * d).exp() - 0.5).abs() < 1e-14);
-        let e = sigma_a_from_color([0.0, 0.5, 0.5], b).unwrap_err();
+        let e = Absorption::from_color([0.0, 0.5, 0.5], beta_n).unwrap_err();
         assert!(e.to_string().contains("(0, 1]"), "{e}");
     }
 

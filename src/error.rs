@@ -2,6 +2,7 @@
 
 /// Invalid parameters: which one, the value given, and what is allowed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ParamError {
     /// A scalar parameter outside its domain (non-finite values included).
     #[error("{name} = {value} is not allowed: {allowed}")]
@@ -26,6 +27,12 @@ pub enum ParamError {
         z: f64,
         /// The requirement, in words.
         allowed: &'static str,
+    },
+    /// A required input was not given (see [`crate::bcsdf::InputValues`]).
+    #[error("{name} is required")]
+    Missing {
+        /// The input's name.
+        name: &'static str,
     },
 }
 

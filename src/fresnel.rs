@@ -9,19 +9,42 @@ use crate::real::{safe_sqrt, Real};
 /// relative index is then `1 / eta`. Total internal reflection gives 1.
 ///
 /// `R = (r_par^2 + r_perp^2) / 2` with `r_par = (eta cos_i - cos_t) / (eta cos_i + cos_t)`,
-/// `r_perp = (cos_i - eta cos_t) / (cos_i + eta cos_t)` and Snell's law for `cos_t`.
+/// `r_perp = (cos_i - eta cos_t) / (cos_i + eta cos_t)` and Snell's law for `cos_t`, evaluated
+/// by [`fresnel_from_outside`] on the side the light comes from.
 /// Requires `eta > 0`; `cos_i` is clamped to [-1, 1]. Returns a value in [0, 1].
 pub fn fresnel_dielectric<R: Real>(cos_i: R, eta: R) -> R {
     let cos_i = cos_i.clamp(R::c(-1.0), R::c(1.0));
     let inside = cos_i.lt(R::c(0.0));
-    let eta = R::select(inside, R::c(1.0) / eta, eta);
-    let cos_i = cos_i.abs();
-    let sin2_t = (R::c(1.0) - cos_i * cos_i) / (eta * eta);
-    let cos_t = safe_sqrt(R::c(1.0) - sin2_t);
-    let r_par = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    let r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    let r = (r_par * r_par + r_perp * r_perp) * R::c(0.5);
-    R::select(sin2_t.lt(R::c(1.0)), r.min(R::c(1.0)), R::c(1.0))
+    let inv_eta = R::c(1.0) / eta;
+    let (n, inv_n) = (
+        R::select(inside, inv_eta, eta),
+        R::select(inside, eta, inv_eta),
+    );
+    let (r, sin2_t) = reflectance(cos_i.abs(), n, inv_n);
+    R::select(sin2_t.lt(R::c(1.0)), r, R::c(1.0))
+}
+
+/// [`fresnel_dielectric`] for light arriving from the outside of a fibre with `eta >= 1`, the
+/// form the hair models evaluate at every entry point: `cos_i` in [0, 1] and the reciprocal
+/// `inv_eta = 1 / eta` given (a model precomputes it). With `eta >= 1` there is no total
+/// internal reflection (`cos_t >= sqrt(1 - 1/eta^2)`), and the two amplitude ratios share one
+/// division, `(r_par^2 + r_perp^2) / 2 = (a^2 d^2 + c^2 b^2) / (2 b^2 d^2)` with
+/// `r_par = a / b`, `r_perp = c / d`.
+pub fn fresnel_from_outside<R: Real>(cos_i: R, eta: R, inv_eta: R) -> R {
+    reflectance(cos_i, eta, inv_eta).0
+}
+
+/// `(R, sin^2 theta_t)` for `cos_i` in [0, 1] on the side of relative index `eta` (reciprocal
+/// `inv_eta`); `R` is meaningful only where `sin^2 theta_t < 1` (no total internal reflection).
+fn reflectance<R: Real>(cos_i: R, eta: R, inv_eta: R) -> (R, R) {
+    let one = R::c(1.0);
+    let sin2_t = (one - cos_i * cos_i) * (inv_eta * inv_eta);
+    let cos_t = safe_sqrt(one - sin2_t);
+    let (a, b) = (eta * cos_i - cos_t, eta * cos_i + cos_t);
+    let (c, d) = (cos_i - eta * cos_t, cos_i + eta * cos_t);
+    let (bb, dd) = (b * b, d * d);
+    let r = (a * a * dd + c * c * bb) / (R::c(2.0) * bb * dd);
+    (r.min(one), sin2_t)
 }
 
 /// Schlick's approximation `R0 + (1 - R0)(1 - cos_i)^5` with `R0 = ((eta - 1)/(eta + 1))^2`

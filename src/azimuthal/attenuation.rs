@@ -1,7 +1,6 @@
-use super::refracted_offset;
-use crate::absorption::{segment_transmittance, PathLength};
-use crate::fresnel::fresnel_dielectric;
-use crate::real::{safe_sqrt, Real};
+use super::path::{entry, Refraction};
+use crate::absorption::PathLength;
+use crate::real::Real;
 
 /// Number of lobes: R, TT, TRT and the residual (p >= 3).
 pub const LOBES: usize = 4;
@@ -24,20 +23,20 @@ pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES] {
 }
 
 /// Attenuations for offset `h` of the ray inclined at theta_o (cosine `cos_theta_o`) with
-/// relative index `eta` and segment transmittance `t`: the entry Fresnel term is evaluated at
-/// the true angle of incidence, cos = cos(theta_o) cos(gamma_o), gamma_o = asin h.
+/// relative index `eta >= 1` and segment transmittance `t`: the entry Fresnel term is evaluated
+/// at the true angle of incidence, cos = cos(theta_o) cos(gamma_o), gamma_o = asin h
+/// ([`crate::fresnel::fresnel_from_outside`]).
 pub fn attenuations<R: Real>(cos_theta_o: R, eta: R, h: R, t: R) -> [R; LOBES] {
-    let cos_gamma_o = safe_sqrt(R::c(1.0) - h * h);
-    attenuations_from_fresnel(fresnel_dielectric(cos_theta_o * cos_gamma_o, eta), t)
+    let (_, fresnel) = entry(cos_theta_o, h, eta, R::c(1.0) / eta);
+    attenuations_from_fresnel(fresnel, t)
 }
 
 /// Attenuations `[A_0, A_1, A_2, A_3+]` at offset `h` for a ray inclined at theta (given by
 /// `sin_theta` and `cos_theta >= 0`) with absorption `sigma_a` per unit radius and internal path
-/// model `path`, from the geometry alone: cos(theta_t) by Snell's law (`sin theta / eta`),
-/// sin(gamma_t) by Bravais' index ([`refracted_offset`]), the segment transmittance
-/// ([`segment_transmittance`]) and [`attenuations`] (Chiang et al. 2016, eqs. 3 and 6). For
-/// code that needs `A_p(h)` alone; [`crate::bcsdf::ChiangHair`] fuses the same steps with its
-/// exit angles.
+/// model `path`, from the geometry alone: the path of [`Refraction::path`] (Snell's law along
+/// the axis, Bravais' index in the normal plane, the segment length, the entry Fresnel term)
+/// and [`crate::azimuthal::FibrePath::attenuations`] (Chiang et al. 2016, eqs. 3 and 6). The reference model
+/// [`crate::bcsdf::ChiangHair`] takes the same path for its attenuations.
 pub fn attenuations_at_offset<R: Real>(
     h: R,
     sin_theta: R,
@@ -46,12 +45,9 @@ pub fn attenuations_at_offset<R: Real>(
     sigma_a: R,
     path: PathLength,
 ) -> [R; LOBES] {
-    let sin_t = sin_theta / eta;
-    let cos_t = safe_sqrt(R::c(1.0) - sin_t * sin_t);
-    let sin_gamma_t = refracted_offset(h, eta, sin_theta, cos_theta);
-    let cos_gamma_t = safe_sqrt(R::c(1.0) - sin_gamma_t * sin_gamma_t);
-    let t = segment_transmittance(sigma_a, cos_gamma_t, cos_t, path);
-    attenuations(cos_theta, eta, h, t)
+    Refraction::new(sin_theta, cos_theta, eta, R::c(1.0) / eta)
+        .path(h, path)
+        .attenuations(sigma_a)
 }
 
 #[cfg(test)]

@@ -1,10 +1,17 @@
 use crate::real::{pi, Real};
 
+/// `(e, (1 + e)^2)` with `e = e^(-|x| / s)`, from `inv_scale = 1 / s`: the logistic density
+/// is `e / (s (1 + e)^2)`. Written with `|x|` so the exponential never overflows.
+fn logistic_parts<R: Real>(x: R, inv_scale: R) -> (R, R) {
+    let e = (-x.abs() * inv_scale).exp();
+    (e, (R::c(1.0) + e).sqr())
+}
+
 /// The logistic density `e^(-|x|/s) / (s (1 + e^(-|x|/s))^2)` of scale `s > 0` (Chiang et al.
-/// 2016, eq. 12). Written with `|x|` so the exponential never overflows.
+/// 2016, eq. 12).
 pub fn logistic<R: Real>(x: R, s: R) -> R {
-    let e = (-x.abs() / s).exp();
-    e / (s * (R::c(1.0) + e).sqr())
+    let (e, d) = logistic_parts(x, R::c(1.0) / s);
+    e / (s * d)
 }
 
 /// The logistic cumulative distribution `1 / (1 + e^(-x/s))`, computed from `e^(-|x|/s)` so it
@@ -16,27 +23,87 @@ pub fn logistic_cdf<R: Real>(x: R, s: R) -> R {
 }
 
 /// The logistic density restricted to [-pi, pi] and renormalised there (Chiang et al. 2016,
-/// eq. 13; pbrt-v4 `TrimmedLogistic` with a = -pi, b = pi). `x` must already lie in [-pi, pi].
+/// eq. 13; pbrt-v4 `TrimmedLogistic` with a = -pi, b = pi), with its constants precomputed:
+/// `D(x) = e / (s m (1 + e)^2)`, `e = e^(-|x|/s)`, `m` the logistic's mass on [-pi, pi]
+/// ([`trimmed_mass`]). A model stores the four fields as uniforms; [`trimmed_logistic`] and
+/// [`sample_trimmed_logistic`] build them from `s`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrimmedLogistic<R> {
+    /// The scale s > 0.
+    pub scale: R,
+    /// 1 / s.
+    pub inv_scale: R,
+    /// The mass m of the untrimmed logistic on [-pi, pi].
+    pub mass: R,
+    /// 1 / (s m), the density's normalisation.
+    pub norm: R,
+}
+
+impl<R: Real> TrimmedLogistic<R> {
+    /// The trimmed logistic of scale `s > 0`.
+    pub fn new(s: R) -> Self {
+        let inv_scale = R::c(1.0) / s;
+        let mass = trimmed_mass(s);
+        TrimmedLogistic {
+            scale: s,
+            inv_scale,
+            mass,
+            norm: inv_scale / mass,
+        }
+    }
+
+    /// The density at `x` in [-pi, pi].
+    pub fn density(&self, x: R) -> R {
+        self.densities([x])[0]
+    }
+
+    /// The density at `N` points in [-pi, pi], with one division for all of them:
+    /// `D(x_p) = e_p norm prod_{q != p} d_q / prod_q d_q`, `d_q = (1 + e_q)^2` in [1, 4].
+    pub fn densities<const N: usize>(&self, x: [R; N]) -> [R; N] {
+        let parts = x.map(|x| logistic_parts(x, self.inv_scale));
+        let mut product = R::c(1.0);
+        for &(_, d) in &parts {
+            product *= d;
+        }
+        let r = self.norm / product;
+        core::array::from_fn(|p| {
+            let mut others = r;
+            for (q, &(_, d)) in parts.iter().enumerate() {
+                if q != p {
+                    others *= d;
+                }
+            }
+            parts[p].0 * others
+        })
+    }
+
+    /// Samples the density from `u` in [0, 1] by inverting its CDF:
+    /// `x = -s ln(1 / (u m + CDF(-pi)) - 1)` (pbrt-v4 `SampleTrimmedLogistic`), clamped to
+    /// [-pi, pi].
+    pub fn sample(&self, u: R) -> R {
+        let lower = logistic_cdf(-pi::<R>(), self.scale);
+        let p = (u * self.mass + lower).clamp(R::c(1e-30), R::c(1.0 - 1e-7));
+        let x = -self.scale * (R::c(1.0) / p - R::c(1.0)).ln();
+        x.clamp(-pi::<R>(), pi::<R>())
+    }
+}
+
+/// The trimmed logistic density of scale `s` at `x` in [-pi, pi] ([`TrimmedLogistic::density`]).
 pub fn trimmed_logistic<R: Real>(x: R, s: R) -> R {
-    logistic(x, s) / trimmed_mass(s)
+    TrimmedLogistic::new(s).density(x)
 }
 
 /// The logistic's mass on [-pi, pi]: `CDF(pi) - CDF(-pi) = (1 - e) / (1 + e)` with
-/// `e = e^(-pi/s)`. [`trimmed_logistic`] divides by it.
+/// `e = e^(-pi/s)`.
 pub fn trimmed_mass<R: Real>(s: R) -> R {
     let e = (-pi::<R>() / s).exp();
     (R::c(1.0) - e) / (R::c(1.0) + e)
 }
 
-/// Samples the trimmed logistic on [-pi, pi] from `u` in [0, 1] by inverting its CDF:
-/// `x = -s ln(1 / (u k + CDF(-pi)) - 1)`, `k = CDF(pi) - CDF(-pi)` (pbrt-v4
-/// `SampleTrimmedLogistic`), clamped to [-pi, pi].
+/// Samples the trimmed logistic of scale `s` on [-pi, pi] from `u` in [0, 1]
+/// ([`TrimmedLogistic::sample`]).
 pub fn sample_trimmed_logistic<R: Real>(u: R, s: R) -> R {
-    let k = trimmed_mass(s);
-    let lower = logistic_cdf(-pi::<R>(), s);
-    let p = (u * k + lower).clamp(R::c(1e-30), R::c(1.0 - 1e-7));
-    let x = -s * (R::c(1.0) / p - R::c(1.0)).ln();
-    x.clamp(-pi::<R>(), pi::<R>())
+    TrimmedLogistic::new(s).sample(u)
 }
 
 /// Number of periodic images summed by [`wrapped_gaussian`] (k = -4..=4).

@@ -1,4 +1,6 @@
-use crate::real::{pi, safe_asin, safe_sqrt, Real};
+use super::path::Refraction;
+use crate::absorption::PathLength;
+use crate::real::{pi, safe_sqrt, Real};
 
 /// The azimuthal exit angle of path p (p internal segments) entering at angle gamma_i and
 /// refracting to gamma_t: `Phi(p) = 2 p gamma_t - 2 gamma_i + p pi` (Marschner et al. 2003,
@@ -9,19 +11,19 @@ pub fn exit_angle<R: Real>(p: R, gamma_i: R, gamma_t: R) -> R {
 
 /// sin(gamma_t) for offset h and a ray inclined at theta (given by its sine and cosine): Snell's
 /// law in the normal plane with Bravais' index eta' = sqrt(eta^2 - sin^2 theta) / cos theta,
-/// written as `h cos theta / sqrt(eta^2 - sin^2 theta)` so that grazing rays (cos theta = 0)
-/// give 0, not 0/0. Requires eta > 1.
+/// [`Refraction::sin_gamma_t`], which gives 0 for grazing rays (cos theta = 0), not 0/0.
+/// Requires eta > 1.
 pub fn refracted_offset<R: Real>(h: R, eta: R, sin_theta: R, cos_theta: R) -> R {
-    h * cos_theta / safe_sqrt(eta * eta - sin_theta * sin_theta)
+    Refraction::new(sin_theta, cos_theta, eta, R::c(1.0) / eta).sin_gamma_t(h)
 }
 
 /// Phi(p, h) for offset h in [-1, 1] and a ray inclined at theta (given by its sine):
-/// gamma_i = asin h, gamma_t = asin(h / eta').
+/// gamma_i = asin h, gamma_t = asin(h / eta') from [`Refraction::path`].
 pub fn exit_angle_of_offset<R: Real>(p: R, h: R, eta: R, sin_theta: R) -> R {
-    let gamma_i = safe_asin(h);
     let cos_theta = safe_sqrt(R::c(1.0) - sin_theta * sin_theta);
-    let gamma_t = safe_asin(refracted_offset(h, eta, sin_theta, cos_theta));
-    exit_angle(p, gamma_i, gamma_t)
+    let path =
+        Refraction::new(sin_theta, cos_theta, eta, R::c(1.0) / eta).path(h, PathLength::Chord);
+    exit_angle(p, path.gamma_o, path.gamma_t)
 }
 
 #[cfg(test)]

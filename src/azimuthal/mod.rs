@@ -6,11 +6,12 @@ mod attenuation;
 mod distribution;
 mod exit_angle;
 mod marschner;
+mod path;
 
 pub use attenuation::{attenuations, attenuations_at_offset, attenuations_from_fresnel, LOBES};
 pub use distribution::{
     logistic, logistic_cdf, sample_trimmed_logistic, sample_wrapped_gaussian, trimmed_logistic,
-    trimmed_mass, wrapped_gaussian, WRAPPED_GAUSSIAN_TERMS,
+    trimmed_mass, wrapped_gaussian, TrimmedLogistic, WRAPPED_GAUSSIAN_TERMS,
 };
 pub use exit_angle::{exit_angle, exit_angle_of_offset, refracted_offset};
 pub use marschner::{
@@ -19,3 +20,4 @@ pub use marschner::{
     CausticParams, MarschnerPath, RootList, TrtCaustic, MARSCHNER_MAX_P, MIN_DPHI_DH,
     ROOT_CAPACITY,
 };
+pub use path::{FibrePath, Refraction};

@@ -1,16 +1,17 @@
-//! Batch evaluation of [`ChiangHair`] over slices, eight or sixteen samples per instruction.
+//! Batch evaluation of any model over slices, eight or sixteen samples per instruction.
 //!
-//! There is no separate SIMD implementation of the model: [`eval_batch`] and [`pdf_batch`] call
-//! the very same generic [`ChiangHair::eval`] and [`ChiangHair::pdf`] that the scalar `f64` and
+//! There is no separate SIMD implementation of a model: [`eval_batch`] and [`pdf_batch`] call
+//! the very same generic [`Bcsdf::eval`] and [`SampledBcsdf::pdf`] that the scalar `f64` and
 //! `f32` paths use, instantiated with a lane type `L` ([`wide::f32x8`] or [`wide::f32x16`], see
-//! [`crate::real::simd`]). The only code here moves data: it transposes `L::LANES`
-//! array-of-structures samples into structure-of-arrays lanes, evaluates, and transposes back.
+//! [`crate::real::simd`]) by [`Model::instantiate`](super::Model::instantiate). The only code
+//! here moves data: it transposes `L::LANES` array-of-structures samples into
+//! structure-of-arrays lanes, evaluates, and transposes back.
 //!
-//! **Which width.** [`batch_model`] builds the eight-lane model (compatible with every x86-64
-//! target); [`batch_model_for`] builds the model for any [`BatchLanes`] type, and
-//! [`BatchReal`] names the faster width for the compilation target: [`wide::f32x16`] (one
-//! AVX-512 register) when the crate is compiled with `avx512f`, e.g. under
-//! `RUSTFLAGS="-C target-cpu=native"` on an AVX-512 machine, [`wide::f32x8`] otherwise.
+//! **Which width.** [`wide::f32x8`] is compatible with every x86-64 target; [`BatchReal`]
+//! names the faster width for the compilation target: [`wide::f32x16`] (one AVX-512 register)
+//! when the crate is compiled with `avx512f`, e.g. under `RUSTFLAGS="-C target-cpu=native"` on
+//! an AVX-512 machine, [`wide::f32x8`] otherwise. For example
+//! `model.instantiate::<BatchReal>()` for a `ChiangHair<f64>` model.
 //!
 //! **Accuracy.** `wide`'s `exp`, `ln` and `atan2` are vectorised polynomial approximations, so
 //! the lanes differ from the scalar `f32` instantiation (which calls libm) by a few ulp per
@@ -24,7 +25,7 @@
 
 use wide::{f32x16, f32x8};
 
-use super::{ChiangHair, ChiangParams};
+use super::model::{Bcsdf, Query, SampledBcsdf};
 use crate::geometry::V3;
 use crate::real::Real;
 
@@ -91,18 +92,6 @@ pub struct BatchLengthError {
     pub out: usize,
 }
 
-/// The eight-lane model: the constants of [`ChiangHair::new`] splatted to every lane. Equivalent
-/// to `ChiangHair::<f32x8>::new(params)`; named for discoverability.
-pub fn batch_model(params: &ChiangParams) -> ChiangHair<f32x8> {
-    ChiangHair::<f32x8>::new(params)
-}
-
-/// The model for lane type `L`, e.g. `batch_model_for::<BatchReal>(params)` for the fastest
-/// width of the compilation target. Equivalent to `ChiangHair::<L>::new(params)`.
-pub fn batch_model_for<L: BatchLanes>(params: &ChiangParams) -> ChiangHair<L> {
-    ChiangHair::<L>::new(params)
-}
-
 /// The padding sample: wi = wo = (0, 1, 0) (perpendicular to the fibre), h = 0.
 const PAD_DIR: [f32; 3] = [0.0, 1.0, 0.0];
 const PAD_H: f32 = 0.0;
@@ -160,16 +149,16 @@ fn for_each_chunk<L: BatchLanes, T: Copy>(
 
 /// `S(wi[k], wo[k], h[k])` per channel into `out[k]`, `L::LANES` samples at a time.
 ///
-/// This is [`ChiangHair::eval`] itself, the same generic code as the scalar `f64`/`f32` paths,
-/// instantiated with the lane type `L`; results agree with `ChiangHair::<f32>::eval` up to the
-/// accuracy of `wide`'s transcendental approximations (see the module documentation).
+/// This is the model's [`Bcsdf::eval`] itself, the same generic code as the scalar `f64`/`f32`
+/// paths, instantiated with the lane type `L`; results agree with the `f32` instantiation up
+/// to the accuracy of `wide`'s transcendental approximations (see the module documentation).
 /// Conventions (local frame, tangent +X, unit directions, `h` in [-1, 1] clamped) are those of
-/// [`ChiangHair::eval`].
+/// [`Query`]; far-field models ignore `h`.
 ///
 /// # Errors
 /// [`BatchLengthError`] if `wi`, `wo`, `h` and `out` differ in length; `out` is then untouched.
-pub fn eval_batch<L: BatchLanes>(
-    hair: &ChiangHair<L>,
+pub fn eval_batch<L: BatchLanes, M: Bcsdf<L>>(
+    model: &M,
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],
     h: &[f32],
@@ -178,7 +167,7 @@ pub fn eval_batch<L: BatchLanes>(
     check(wi.len(), wo.len(), h.len(), out.len())?;
     for_each_chunk(wi, wo, h, out, |wi, wo, h, out| {
         let mut rgb = [[0.0_f32; MAX_LANES]; 3];
-        for (lanes, value) in rgb.iter_mut().zip(hair.eval(wi, wo, h)) {
+        for (lanes, value) in rgb.iter_mut().zip(model.eval(&Query::new(wi, wo, h))) {
             value.store(&mut lanes[..L::LANES]);
         }
         for (k, slot) in out.iter_mut().enumerate().take(L::LANES) {
@@ -188,13 +177,13 @@ pub fn eval_batch<L: BatchLanes>(
     Ok(())
 }
 
-/// [`ChiangHair::pdf`] of `wi[k]` given `wo[k]`, `h[k]` into `out[k]`, `L::LANES` samples at a
-/// time (the same generic code as the scalar path, instantiated with `L`).
+/// [`SampledBcsdf::pdf`] of `wi[k]` given `wo[k]`, `h[k]` into `out[k]`, `L::LANES` samples at
+/// a time (the same generic code as the scalar path, instantiated with `L`).
 ///
 /// # Errors
 /// [`BatchLengthError`] if `wi`, `wo`, `h` and `out` differ in length; `out` is then untouched.
-pub fn pdf_batch<L: BatchLanes>(
-    hair: &ChiangHair<L>,
+pub fn pdf_batch<L: BatchLanes, M: SampledBcsdf<L>>(
+    model: &M,
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],
     h: &[f32],
@@ -203,7 +192,7 @@ pub fn pdf_batch<L: BatchLanes>(
     check(wi.len(), wo.len(), h.len(), out.len())?;
     for_each_chunk(wi, wo, h, out, |wi, wo, h, out| {
         let n = out.len().min(L::LANES);
-        hair.pdf(wi, wo, h).store(&mut out[..n]);
+        model.pdf(&Query::new(wi, wo, h)).store(&mut out[..n]);
     });
     Ok(())
 }
@@ -211,19 +200,14 @@ pub fn pdf_batch<L: BatchLanes>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::absorption::sigma_a_from_melanin;
+    use crate::bcsdf::{ChiangHair, Model};
+    use crate::params::HairParams;
     use rand::{Rng, SeedableRng};
     use rand_pcg::Pcg64Mcg;
 
-    fn params() -> ChiangParams {
-        ChiangParams::new(
-            0.3,
-            0.3,
-            2.0_f64.to_radians(),
-            1.55,
-            sigma_a_from_melanin(1.3, 0.0).unwrap(),
-        )
-        .unwrap()
+    /// beta_m = beta_n = 0.3, a 2 degree tilt, eta = 1.55, eumelanin 1.3.
+    fn model() -> ChiangHair<f64> {
+        ChiangHair::new(&HairParams::default())
     }
 
     fn unit(rng: &mut Pcg64Mcg) -> [f32; 3] {
@@ -307,7 +291,7 @@ mod tests {
 
     #[test]
     fn length_mismatch_is_a_typed_error() {
-        let hair = batch_model(&params());
+        let hair = model().instantiate::<f32x8>();
         let d = [[0.0, 1.0, 0.0]; 3];
         let mut out = [[7.0; 3]; 3];
         let err = eval_batch(&hair, &d, &d[..2], &[0.0; 3], &mut out).unwrap_err();
@@ -337,21 +321,20 @@ mod tests {
     /// Bounds asserted: 1e-4 against f64, 1.2e-5 against scalar f32.
     #[test]
     fn batch_matches_scalar_and_reference() {
-        batch_matches_scalar_and_reference_for(batch_model(&params()));
+        batch_matches_scalar_and_reference_for(model().instantiate::<f32x8>());
     }
 
     #[test]
     fn sixteen_lanes_match_scalar_and_reference() {
-        batch_matches_scalar_and_reference_for(batch_model_for::<f32x16>(&params()));
+        batch_matches_scalar_and_reference_for(model().instantiate::<f32x16>());
     }
 
     fn batch_matches_scalar_and_reference_for<L: BatchLanes>(hair8: ChiangHair<L>) {
         const FLOOR: f64 = 1e-6;
         const BOUND_VS_F64: f64 = 1e-4;
         const BOUND_VS_F32: f64 = 1.2e-5;
-        let p = params();
-        let hair32 = ChiangHair::<f32>::new(&p);
-        let hair64 = ChiangHair::<f64>::new(&p);
+        let hair32 = model().instantiate::<f32>();
+        let hair64 = model();
         let (wi, wo, h) = inputs(100_000);
         let n = wi.len();
         assert_ne!(n % L::LANES, 0, "the tail must be exercised");
@@ -360,8 +343,8 @@ mod tests {
         let mut scalar = Vec::with_capacity(n);
         let mut reference = Vec::with_capacity(n);
         for k in 0..n {
-            scalar.push(hair32.eval(v3(wi[k]), v3(wo[k]), h[k]));
-            reference.push(hair64.eval(v3(wi[k]), v3(wo[k]), h[k] as f64));
+            scalar.push(hair32.eval(&Query::new(v3(wi[k]), v3(wo[k]), h[k])));
+            reference.push(hair64.eval(&Query::new(v3(wi[k]), v3(wo[k]), h[k] as f64)));
         }
         for (k, s) in batch.iter().enumerate() {
             assert!(
@@ -396,7 +379,7 @@ mod tests {
         pdf_batch(&hair8, &wi, &wo, &h, &mut pdf).unwrap();
         let mut worst = 0.0_f64;
         for k in 0..n {
-            let r = hair64.pdf(v3(wi[k]), v3(wo[k]), h[k] as f64);
+            let r = hair64.pdf(&Query::new(v3(wi[k]), v3(wo[k]), h[k] as f64));
             worst = worst.max((pdf[k] as f64 - r).abs() / (r.abs() + FLOOR));
         }
         eprintln!("pdf batch vs f64 {worst:.3e}");
@@ -412,7 +395,7 @@ mod tests {
     }
 
     fn tails_agree<L: BatchLanes>() {
-        let hair = batch_model_for::<L>(&params());
+        let hair = model().instantiate::<L>();
         let (wi, wo, h) = inputs(48);
         let mut full = vec![[0.0; 3]; 48];
         eval_batch(&hair, &wi[..48], &wo[..48], &h[..48], &mut full).unwrap();

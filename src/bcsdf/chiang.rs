@@ -4,13 +4,14 @@
 //! `S(wi, wo, h) = sum_{p=0}^{2} M_p(theta_i; theta_o^(p)) A_p(h) N_p(phi)
 //!               + M_3(theta_i; theta_o) A_3+(h) / (2 pi)`
 //!
-//! - `M_p` is d'Eon's lobe ([`crate::lobe::deon_lobe`]) with variances v_0 from beta_m
+//! - `M_p` is d'Eon's lobe ([`crate::lobe::DeonLobe`]) with variances v_0 from beta_m
 //!   (Chiang eq. 7), v_1 = v_0 / 4, v_2 = v_3 = 4 v_0; the cuticle tilt alpha rotates theta_o by
 //!   -2 alpha for R, +alpha for TT and +4 alpha for TRT (pbrt-v4).
-//! - `A_p` are the attenuations of [`crate::azimuthal::attenuations`] with the exact chord
-//!   transmittance `exp(-sigma_a 2 cos gamma_t / cos theta_t)`.
-//! - `N_p(phi) = D(phi - Phi(p, gamma_o, gamma_t))`, D the trimmed logistic of scale s from
-//!   beta_n (Chiang eq. 8).
+//! - `A_p` are the attenuations of the path through the fibre
+//!   ([`crate::azimuthal::Refraction::path`], [`crate::azimuthal::FibrePath::attenuations`])
+//!   with the exact chord transmittance `exp(-sigma_a 2 cos gamma_t / cos theta_t)`.
+//! - `N_p(phi) = D(phi - Phi(p, gamma_o, gamma_t))`, D the trimmed logistic
+//!   ([`crate::azimuthal::TrimmedLogistic`]) of scale s from beta_n (Chiang eq. 8).
 //!
 //! **Contract.** `S` carries no cosine factor of any kind: with sigma_a = 0 its integral over all
 //! directions wi (solid angle) is 1 for every wo and h. pbrt's `f` equals `S / |cos theta_i|`
@@ -21,88 +22,20 @@
 //! (gamma_o = asin h), and the relative azimuth of the lobes is phi_i - phi_o, the negative of
 //! [`crate::geometry::FibreAngles::phi`].
 
-use crate::absorption::Rgb;
-use crate::azimuthal::{
-    attenuations_from_fresnel, exit_angle, sample_trimmed_logistic, trimmed_mass, LOBES,
-};
+use super::inputs::{FromInputs, InputValues, HAIR_INPUTS};
+use super::model::{Bcsdf, HairSample, Model, Query, RandomNumbers, SampledBcsdf};
+use crate::absorption::PathLength;
+use crate::azimuthal::{exit_angle, FibrePath, Refraction, TrimmedLogistic, LOBES};
 use crate::error::ParamError;
-use crate::geometry::{azimuth_between, local_direction, local_sin_cos_theta, V3};
+use crate::geometry::{
+    azimuth_between, local_direction, local_fibre_angles, local_sin_cos_theta, V3,
+};
 use crate::lobe::{deon_lobe_sample_cos_theta, DeonLobe};
+use crate::params::HairParams;
 use crate::real::{pi, safe_sqrt, wrap_angle, Real};
 
-/// Validated parameters of the Chiang 2016 model.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ChiangParams {
-    beta_m: f64,
-    beta_n: f64,
-    alpha: f64,
-    eta: f64,
-    sigma_a: Rgb,
-}
-
-impl ChiangParams {
-    /// Checks and stores the parameters.
-    ///
-    /// - `beta_m`, `beta_n`: longitudinal and azimuthal roughness in (0, 1].
-    /// - `alpha`: cuticle tilt in radians, |alpha| < pi/2 (hair: about 2 degrees).
-    /// - `eta`: relative index of refraction, > 1 (hair: 1.55).
-    /// - `sigma_a`: absorption per unit fibre radius, finite and >= 0 per channel.
-    ///
-    /// # Errors
-    /// [`ParamError::OutOfRange`] naming the first parameter outside its domain.
-    pub fn new(
-        beta_m: f64,
-        beta_n: f64,
-        alpha: f64,
-        eta: f64,
-        sigma_a: Rgb,
-    ) -> Result<Self, ParamError> {
-        let roughness = "roughness must be in (0, 1]";
-        let beta_m = ParamError::check("beta_m", beta_m, roughness, |v| v > 0.0 && v <= 1.0)?;
-        let beta_n = ParamError::check("beta_n", beta_n, roughness, |v| v > 0.0 && v <= 1.0)?;
-        let alpha = ParamError::check(
-            "alpha",
-            alpha,
-            "the tilt must be finite with |alpha| < pi/2 radians",
-            |v| v.abs() < core::f64::consts::FRAC_PI_2,
-        )?;
-        let eta = ParamError::check(
-            "eta",
-            eta,
-            "the relative index of refraction must be > 1",
-            |v| v > 1.0,
-        )?;
-        let sigma_a = crate::absorption::validate_sigma_a(sigma_a)?;
-        Ok(ChiangParams {
-            beta_m,
-            beta_n,
-            alpha,
-            eta,
-            sigma_a,
-        })
-    }
-
-    /// Longitudinal roughness beta_m.
-    pub fn beta_m(&self) -> f64 {
-        self.beta_m
-    }
-    /// Azimuthal roughness beta_n.
-    pub fn beta_n(&self) -> f64 {
-        self.beta_n
-    }
-    /// Cuticle tilt alpha, radians.
-    pub fn alpha(&self) -> f64 {
-        self.alpha
-    }
-    /// Relative index of refraction eta.
-    pub fn eta(&self) -> f64 {
-        self.eta
-    }
-    /// Absorption per unit radius.
-    pub fn sigma_a(&self) -> Rgb {
-        self.sigma_a
-    }
-}
+/// The names of the four lobes, in the order of every per-lobe array of the Chiang models.
+pub const CHIANG_LOBES: [&str; LOBES] = ["R", "TT", "TRT", "residual"];
 
 /// Longitudinal variance of the R lobe from beta_m (Chiang et al. 2016, eq. 7):
 /// `v = (0.726 b + 0.812 b^2 + 3.7 b^20)^2`.
@@ -117,42 +50,103 @@ pub fn logistic_scale(beta_n: f64) -> f64 {
         * (0.265 * beta_n + 1.194 * beta_n * beta_n + 5.372 * beta_n.powi(22))
 }
 
-/// Number of per-material constants of [`ChiangHair`] ([`ChiangHair::constants`]).
-pub const CHIANG_CONSTANTS: usize = 21;
-
-/// The Chiang 2016 model ready to evaluate in the working precision `R`: the per-material
-/// constants are derived once in `f64` and rounded to `R`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ChiangHair<R> {
-    /// Longitudinal variances v_p for p = 0..3.
-    v: [R; LOBES],
-    /// d'Eon's lobe of each variance, normalisation precomputed.
-    lobe: [DeonLobe<R>; LOBES],
-    /// Logistic scale s.
-    s: R,
-    /// 1 / (the logistic's mass on [-pi, pi]).
-    inv_mass: R,
-    /// sin and cos of alpha, 2 alpha and 4 alpha.
-    sin_2k_alpha: [R; 3],
-    cos_2k_alpha: [R; 3],
-    eta: R,
-    sigma_a: [R; 3],
-    /// Derived in [`ChiangHair::from_constants`] (not part of [`ChiangHair::constants`]): 1 / eta,
-    /// 1 / s and 1 / (s mass), so that evaluation multiplies instead of dividing.
-    inv_eta: R,
-    inv_s: R,
-    logistic_norm: R,
+crate::uniform_block! {
+    /// The derived constants of the Chiang 2016 model ([`ChiangUniforms::new`]): what CPU
+    /// instantiations, SIMD batches and shader code read. Lobe constants are those of d'Eon's
+    /// lobe ([`DeonLobe`]); the residual lobe shares TRT's variance (v_3 = v_2 = 4 v_0).
+    pub struct ChiangUniforms<R> {
+        /// Longitudinal variance of R, v_0 (Chiang eq. 7).
+        pub variance_r: R,
+        /// Longitudinal variance of TT, v_0 / 4.
+        pub variance_tt: R,
+        /// Longitudinal variance of TRT and the residual, 4 v_0.
+        pub variance_trt: R,
+        /// 1 / v_0.
+        pub inv_variance_r: R,
+        /// 1 / v_1.
+        pub inv_variance_tt: R,
+        /// 1 / v_2.
+        pub inv_variance_trt: R,
+        /// d'Eon's normalisation 1 / (v (1 - e^(-2/v))) of R.
+        pub lobe_norm_r: R,
+        /// The same for TT.
+        pub lobe_norm_tt: R,
+        /// The same for TRT and the residual.
+        pub lobe_norm_trt: R,
+        /// Logistic scale s (Chiang eq. 8).
+        pub logistic_scale: R,
+        /// 1 / s.
+        pub logistic_inv_scale: R,
+        /// The logistic's mass on [-pi, pi].
+        pub logistic_mass: R,
+        /// 1 / (s mass).
+        pub logistic_norm: R,
+        /// sin alpha.
+        pub sin_alpha: R,
+        /// cos alpha.
+        pub cos_alpha: R,
+        /// sin 2 alpha.
+        pub sin_2_alpha: R,
+        /// cos 2 alpha.
+        pub cos_2_alpha: R,
+        /// sin 4 alpha.
+        pub sin_4_alpha: R,
+        /// cos 4 alpha.
+        pub cos_4_alpha: R,
+        /// Relative index of refraction eta.
+        pub eta: R,
+        /// 1 / eta.
+        pub inv_eta: R,
+        /// Absorption per unit radius, linear RGB.
+        pub sigma_a: [R; 3],
+    }
 }
 
-/// One importance sample of [`ChiangHair::sample`].
+impl ChiangUniforms<f64> {
+    /// Derives the constants from the physical parameters (pbrt-v4 `HairBxDF` constructor),
+    /// in `f64`.
+    pub fn new(params: &HairParams) -> Self {
+        let v0 = longitudinal_variance(params.beta_m.get());
+        let lobes = [v0, 0.25 * v0, 4.0 * v0].map(DeonLobe::<f64>::new);
+        let logistic = TrimmedLogistic::<f64>::new(logistic_scale(params.beta_n.get()));
+        // sin and cos of alpha, 2 alpha and 4 alpha by the double-angle formulas.
+        let alpha = params.alpha.get();
+        let s1 = alpha.sin();
+        let c1 = (1.0 - s1 * s1).max(0.0).sqrt();
+        let (s2, c2) = (2.0 * c1 * s1, c1 * c1 - s1 * s1);
+        let (s4, c4) = (2.0 * c2 * s2, c2 * c2 - s2 * s2);
+        let eta = params.eta.get();
+        ChiangUniforms {
+            variance_r: v0,
+            variance_tt: 0.25 * v0,
+            variance_trt: 4.0 * v0,
+            inv_variance_r: lobes[0].inv_v,
+            inv_variance_tt: lobes[1].inv_v,
+            inv_variance_trt: lobes[2].inv_v,
+            lobe_norm_r: lobes[0].norm,
+            lobe_norm_tt: lobes[1].norm,
+            lobe_norm_trt: lobes[2].norm,
+            logistic_scale: logistic.scale,
+            logistic_inv_scale: logistic.inv_scale,
+            logistic_mass: logistic.mass,
+            logistic_norm: logistic.norm,
+            sin_alpha: s1,
+            cos_alpha: c1,
+            sin_2_alpha: s2,
+            cos_2_alpha: c2,
+            sin_4_alpha: s4,
+            cos_4_alpha: c4,
+            eta,
+            inv_eta: 1.0 / eta,
+            sigma_a: params.sigma_a.rgb(),
+        }
+    }
+}
+
+/// The Chiang 2016 model in the working precision `R`, reading its [`ChiangUniforms`].
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HairSample<R> {
-    /// The sampled incident direction (unit, local frame).
-    pub wi: V3<R>,
-    /// `S(wi, wo, h)` per channel (no cosine factor).
-    pub value: [R; 3],
-    /// The solid-angle density of `wi`; the estimator weight is `value / pdf`.
-    pub pdf: R,
+pub struct ChiangHair<R> {
+    uniforms: ChiangUniforms<R>,
 }
 
 /// The factors of every lobe for one direction pair: the longitudinal `M_p`, and the azimuthal
@@ -190,175 +184,131 @@ impl<R: Real> LobeTerms<R> {
     }
 
     /// `M_p A_p N_p` per lobe and channel.
-    pub fn per_lobe(&self) -> [[R; 3]; LOBES] {
-        core::array::from_fn(|p| self.an[p].map(|an| self.m[p] * an))
+    pub fn per_lobe(&self) -> Vec<[R; 3]> {
+        (0..LOBES)
+            .map(|p| self.an[p].map(|an| self.m[p] * an))
+            .collect()
+    }
+}
+
+/// sin and cos of theta_i and theta_o, and the lobes' relative azimuth phi_i - phi_o.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PairAngles<R> {
+    pub sin_i: R,
+    pub cos_i: R,
+    pub sin_o: R,
+    pub cos_o: R,
+    pub phi: R,
+}
+
+impl<R: Real> PairAngles<R> {
+    /// The angles of a query's directions ([`local_fibre_angles`]; its phi_o - phi_i negated).
+    pub fn of(query: &Query<R>) -> Self {
+        let a = local_fibre_angles(query.wi, query.wo);
+        PairAngles {
+            sin_i: a.sin_theta_i,
+            cos_i: a.cos_theta_i,
+            sin_o: a.sin_theta_o,
+            cos_o: a.cos_theta_o,
+            phi: -a.phi,
+        }
     }
 }
 
 impl<R: Real> ChiangHair<R> {
-    /// Derives the model constants (pbrt-v4 `HairBxDF` constructor).
-    pub fn new(params: &ChiangParams) -> Self {
-        let v0 = longitudinal_variance(params.beta_m);
-        let v = [v0, 0.25 * v0, 4.0 * v0, 4.0 * v0];
-        let lobe = v.map(DeonLobe::new);
-        let s = logistic_scale(params.beta_n);
-        let mut sin = [params.alpha.sin(), 0.0, 0.0];
-        let mut cos = [(1.0 - sin[0] * sin[0]).max(0.0).sqrt(), 0.0, 0.0];
-        for k in 1..3 {
-            sin[k] = 2.0 * cos[k - 1] * sin[k - 1];
-            cos[k] = cos[k - 1] * cos[k - 1] - sin[k - 1] * sin[k - 1];
-        }
-        let constants: [f64; CHIANG_CONSTANTS] = [
-            v[0],
-            v[1],
-            v[2],
-            v[3],
-            lobe[0].inv_v,
-            lobe[1].inv_v,
-            lobe[2].inv_v,
-            lobe[3].inv_v,
-            lobe[0].norm,
-            lobe[1].norm,
-            lobe[2].norm,
-            lobe[3].norm,
-            s,
-            1.0 / trimmed_mass(s),
-            sin[0],
-            sin[1],
-            sin[2],
-            cos[0],
-            cos[1],
-            cos[2],
-            params.eta,
-        ];
-        Self::from_constants(constants.map(R::c), params.sigma_a.map(R::c))
+    /// The model of `params`: the uniforms derived once in `f64` ([`ChiangUniforms::new`]) and
+    /// rounded to `R`.
+    pub fn new(params: &HairParams) -> Self {
+        ChiangHair::<f64>::from_uniforms(ChiangUniforms::new(params)).instantiate()
     }
 
-    /// The model from constants in the order of [`ChiangHair::constants`] and the absorption
-    /// per unit radius. Shader code receives both as uniforms this way.
-    pub fn from_constants(c: [R; CHIANG_CONSTANTS], sigma_a: [R; 3]) -> Self {
-        let one = R::c(1.0);
-        let inv_s = one / c[12];
-        ChiangHair {
-            inv_eta: one / c[20],
-            inv_s,
-            logistic_norm: inv_s * c[13],
-            v: [c[0], c[1], c[2], c[3]],
-            lobe: core::array::from_fn(|p| DeonLobe {
-                inv_v: c[4 + p],
-                norm: c[8 + p],
-            }),
-            s: c[12],
-            inv_mass: c[13],
-            sin_2k_alpha: [c[14], c[15], c[16]],
-            cos_2k_alpha: [c[17], c[18], c[19]],
-            eta: c[20],
-            sigma_a,
-        }
+    /// The model reading `uniforms` (rounded or symbolic: shader code receives them this way).
+    pub fn from_uniforms(uniforms: ChiangUniforms<R>) -> Self {
+        ChiangHair { uniforms }
     }
 
-    /// Absorption per unit radius.
-    pub fn sigma_a(&self) -> [R; 3] {
-        self.sigma_a
+    /// The model's uniforms.
+    pub fn uniforms(&self) -> &ChiangUniforms<R> {
+        &self.uniforms
     }
 
     /// Relative index of refraction.
     pub fn eta(&self) -> R {
-        self.eta
+        self.uniforms.eta
     }
 
-    /// `[v_0..v_3, 1/v_0..1/v_3, the four d'Eon normalisations, s, 1/(logistic mass),
-    /// sin alpha, sin 2alpha, sin 4alpha, cos alpha, cos 2alpha, cos 4alpha, eta]`: the
-    /// material constants (sigma_a travels separately).
-    pub fn constants(&self) -> [R; CHIANG_CONSTANTS] {
-        [
-            self.v[0],
-            self.v[1],
-            self.v[2],
-            self.v[3],
-            self.lobe[0].inv_v,
-            self.lobe[1].inv_v,
-            self.lobe[2].inv_v,
-            self.lobe[3].inv_v,
-            self.lobe[0].norm,
-            self.lobe[1].norm,
-            self.lobe[2].norm,
-            self.lobe[3].norm,
-            self.s,
-            self.inv_mass,
-            self.sin_2k_alpha[0],
-            self.sin_2k_alpha[1],
-            self.sin_2k_alpha[2],
-            self.cos_2k_alpha[0],
-            self.cos_2k_alpha[1],
-            self.cos_2k_alpha[2],
-            self.eta,
-        ]
+    /// d'Eon's lobe and its variance for lobe p (the residual shares TRT's).
+    fn lobe(&self, p: usize) -> (DeonLobe<R>, R) {
+        let u = &self.uniforms;
+        let (inv_v, norm, v) = match p {
+            0 => (u.inv_variance_r, u.lobe_norm_r, u.variance_r),
+            1 => (u.inv_variance_tt, u.lobe_norm_tt, u.variance_tt),
+            _ => (u.inv_variance_trt, u.lobe_norm_trt, u.variance_trt),
+        };
+        (DeonLobe { inv_v, norm }, v)
+    }
+
+    /// The azimuthal distribution.
+    pub(crate) fn logistic(&self) -> TrimmedLogistic<R> {
+        let u = &self.uniforms;
+        TrimmedLogistic {
+            scale: u.logistic_scale,
+            inv_scale: u.logistic_inv_scale,
+            mass: u.logistic_mass,
+            norm: u.logistic_norm,
+        }
     }
 
     /// theta_o rotated by the tilt of lobe p: -2 alpha (R), +alpha (TT), +4 alpha (TRT), none
     /// for the residual. Returns (sin, |cos|).
     fn tilted(&self, p: usize, sin_o: R, cos_o: R) -> (R, R) {
-        let (k, sign) = match p {
-            0 => (1, -1.0),
-            1 => (0, 1.0),
-            2 => (2, 1.0),
+        let u = &self.uniforms;
+        let (s, c) = match p {
+            0 => (-u.sin_2_alpha, u.cos_2_alpha),
+            1 => (u.sin_alpha, u.cos_alpha),
+            2 => (u.sin_4_alpha, u.cos_4_alpha),
             _ => return (sin_o, cos_o),
         };
-        let (s, c) = (self.sin_2k_alpha[k] * R::c(sign), self.cos_2k_alpha[k]);
         (sin_o * c + cos_o * s, (cos_o * c - sin_o * s).abs())
     }
 
-    /// Geometry of the path through the fibre for wo and h: (gamma_o, gamma_t, per-channel
-    /// segment transmittance, entry Fresnel reflectance).
-    ///
-    /// `h` must lie in [-1, 1]. The same quantities as [`crate::azimuthal::refracted_offset`],
-    /// [`crate::absorption::segment_transmittance`] (chord),
-    /// [`crate::fresnel::fresnel_dielectric`] and [`crate::real::safe_asin`] compute, with
-    /// the square roots and divisions they would repeat shared: `sqrt(eta^2 - sin_o^2) =
-    /// eta cos_t`, one reciprocal of cos_t serves the offset and the chord, and the asines
-    /// reuse the cosines `sqrt(1 - h^2)` and `cos gamma_t` (`safe_asin` computes them the same
-    /// way; the arguments lie in [-1, 1] so its clamp is idle).
-    fn path(&self, sin_o: R, cos_o: R, h: R) -> (R, R, [R; 3], R) {
-        let one = R::c(1.0);
-        let sin_t = sin_o * self.inv_eta;
-        // cos_t >= sqrt(1 - 1/eta^2) > 0 for eta > 1.
-        let cos_t = safe_sqrt(one - sin_t * sin_t);
-        let inv_cos_t = one / cos_t;
-        let sin_gamma_t = h * cos_o * self.inv_eta * inv_cos_t;
-        let cos_gamma_t = safe_sqrt(one - sin_gamma_t * sin_gamma_t);
-        let chord = R::c(2.0) * cos_gamma_t * inv_cos_t;
-        let transmittance = self.sigma_a.map(|sa| (-sa * chord).exp());
-        let cos_gamma_o = safe_sqrt(one - h * h);
-        let fresnel = self.fresnel_from_outside(cos_o * cos_gamma_o);
-        let gamma_o = h.atan2(cos_gamma_o);
-        let gamma_t = sin_gamma_t.atan2(cos_gamma_t);
-        (gamma_o, gamma_t, transmittance, fresnel)
-    }
-
-    /// [`crate::fresnel::fresnel_dielectric`] for light arriving from outside, `cos_i` in
-    /// [0, 1]: with eta > 1 there is no total internal reflection (and cos_t > 0), and the two
-    /// amplitude ratios share one division,
-    /// `(r_par^2 + r_perp^2) / 2 = (a^2 d^2 + c^2 b^2) / (2 b^2 d^2)` with `r_par = a / b`,
-    /// `r_perp = c / d` (b, d >= cos_t > 0).
-    fn fresnel_from_outside(&self, cos_i: R) -> R {
-        let one = R::c(1.0);
-        let eta = self.eta;
-        let sin2_t = (one - cos_i * cos_i) * (self.inv_eta * self.inv_eta);
-        let cos_t = safe_sqrt(one - sin2_t);
-        let (a, b) = (eta * cos_i - cos_t, eta * cos_i + cos_t);
-        let (c, d) = (cos_i - eta * cos_t, cos_i + eta * cos_t);
-        let (bb, dd) = (b * b, d * d);
-        let r = (a * a * dd + c * c * bb) / (R::c(2.0) * bb * dd);
-        r.min(one)
+    /// The path through the fibre for wo's inclination and offset `h` (clamped to [-1, 1]),
+    /// and `A_p` per lobe and channel.
+    fn attenuations_at(&self, sin_o: R, cos_o: R, h: R) -> (FibrePath<R>, [[R; 3]; LOBES]) {
+        let u = &self.uniforms;
+        let path = Refraction::new(sin_o, cos_o, u.eta, u.inv_eta).path(h, PathLength::Chord);
+        let per_channel = u.sigma_a.map(|sa| path.attenuations(sa));
+        let a = core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
+        (path, a)
     }
 
     /// M_p for p = 0..3 with the tilt of each lobe.
-    pub(crate) fn longitudinal(&self, sin_i: R, cos_i: R, sin_o: R, cos_o: R) -> [R; LOBES] {
+    pub(crate) fn longitudinal(&self, angles: &PairAngles<R>) -> [R; LOBES] {
         core::array::from_fn(|p| {
-            let (sin_op, cos_op) = self.tilted(p, sin_o, cos_o);
-            self.lobe[p].eval(sin_i, cos_i, sin_op, cos_op)
+            let (sin_op, cos_op) = self.tilted(p, angles.sin_o, angles.cos_o);
+            self.lobe(p)
+                .0
+                .eval(angles.sin_i, angles.cos_i, sin_op, cos_op)
         })
+    }
+
+    /// `A_p` per channel and `N_p` at offset `h` (clamped to [-1, 1]) for relative azimuth
+    /// `phi = phi_i - phi_o`: `N_p` is the trimmed logistic about the exit angle Phi(p) for
+    /// p < 3 (the three share one division, [`TrimmedLogistic::densities`]) and `1 / (2 pi)`
+    /// for the residual.
+    fn attenuations_and_azimuths(
+        &self,
+        sin_o: R,
+        cos_o: R,
+        phi: R,
+        h: R,
+    ) -> ([[R; 3]; LOBES], [R; LOBES]) {
+        let (path, a) = self.attenuations_at(sin_o, cos_o, h);
+        let dphi: [R; 3] = core::array::from_fn(|p| {
+            wrap_angle(phi - exit_angle(R::c(p as f64), path.gamma_o, path.gamma_t))
+        });
+        let [n0, n1, n2] = self.logistic().densities(dphi);
+        (a, [n0, n1, n2, R::c(0.5 * core::f64::consts::FRAC_1_PI)])
     }
 
     /// The azimuthal factors at offset `h` (clamped to [-1, 1]) for relative azimuth
@@ -378,94 +328,26 @@ impl<R: Real> ChiangHair<R> {
         )
     }
 
-    /// `A_p` per channel and `N_p` at offset `h` (clamped to [-1, 1]) for relative azimuth
-    /// `phi`: the part of [`ChiangHair::azimuthal`] that evaluation needs (it skips the lobe
-    /// weights of sampling).
-    /// gamma_o, gamma_t and `A_p` per lobe and channel at offset `h` (clamped to [-1, 1]).
-    fn attenuations_at(&self, sin_o: R, cos_o: R, h: R) -> (R, R, [[R; 3]; LOBES]) {
-        let h = h.clamp(R::c(-1.0), R::c(1.0));
-        let (gamma_o, gamma_t, transmittance, fresnel) = self.path(sin_o, cos_o, h);
-        let per_channel = transmittance.map(|t| attenuations_from_fresnel(fresnel, t));
-        let a = core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
-        (gamma_o, gamma_t, a)
-    }
-
-    fn attenuations_and_azimuths(
-        &self,
-        sin_o: R,
-        cos_o: R,
-        phi: R,
-        h: R,
-    ) -> ([[R; 3]; LOBES], [R; LOBES]) {
-        let (gamma_o, gamma_t, a) = self.attenuations_at(sin_o, cos_o, h);
-        // N_p = logistic(dphi_p, s) / (trimmed mass) = e_p / (s mass (1 + e_p)^2) with
-        // e_p = exp(-|dphi_p| / s): 1/s and 1/(s mass) are precomputed, and the three
-        // denominators (each in [1, 4]) share one division.
-        let e: [R; 3] = core::array::from_fn(|p| {
-            let dphi = wrap_angle(phi - exit_angle(R::c(p as f64), gamma_o, gamma_t));
-            (-dphi.abs() * self.inv_s).exp()
-        });
-        let d = e.map(|e| (R::c(1.0) + e).sqr());
-        let r = self.logistic_norm / (d[0] * d[1] * d[2]);
-        let n = [
-            e[0] * (r * (d[1] * d[2])),
-            e[1] * (r * (d[0] * d[2])),
-            e[2] * (r * (d[0] * d[1])),
-            R::c(0.5 * core::f64::consts::FRAC_1_PI),
-        ];
-        (a, n)
-    }
-
-    /// The angles of a direction pair: (sin_i, cos_i, sin_o, cos_o, phi_i - phi_o).
-    pub(crate) fn angles(wi: V3<R>, wo: V3<R>) -> (R, R, R, R, R) {
-        let (sin_o, cos_o) = local_sin_cos_theta(wo);
-        let (sin_i, cos_i) = local_sin_cos_theta(wi);
-        let phi = azimuth_between(V3::c(1.0, 0.0, 0.0), normal_plane(wo), normal_plane(wi));
-        (sin_i, cos_i, sin_o, cos_o, phi)
-    }
-
-    /// The lobe factors for a direction pair and an azimuthal part computed by `azimuthal`
-    /// from (sin_o, cos_o, phi).
+    /// The lobe factors for a query and an azimuthal part computed by `azimuthal` from
+    /// (sin_o, cos_o, phi).
     pub(crate) fn terms_with(
         &self,
-        wi: V3<R>,
-        wo: V3<R>,
+        query: &Query<R>,
         azimuthal: impl FnOnce(R, R, R) -> ([[R; 3]; LOBES], [R; LOBES]),
     ) -> LobeTerms<R> {
-        let (sin_i, cos_i, sin_o, cos_o, phi) = Self::angles(wi, wo);
-        let (an, wn) = azimuthal(sin_o, cos_o, phi);
+        let angles = PairAngles::of(query);
+        let (an, wn) = azimuthal(angles.sin_o, angles.cos_o, angles.phi);
         LobeTerms {
-            m: self.longitudinal(sin_i, cos_i, sin_o, cos_o),
+            m: self.longitudinal(&angles),
             an,
             wn,
         }
     }
 
-    fn terms(&self, wi: V3<R>, wo: V3<R>, h: R) -> LobeTerms<R> {
-        self.terms_with(wi, wo, |sin_o, cos_o, phi| {
-            self.azimuthal(sin_o, cos_o, phi, h)
+    fn terms(&self, query: &Query<R>) -> LobeTerms<R> {
+        self.terms_with(query, |sin_o, cos_o, phi| {
+            self.azimuthal(sin_o, cos_o, phi, query.h)
         })
-    }
-
-    /// `S(wi, wo, h)` per channel, for unit `wi`, `wo` in the local frame and offset `h` in
-    /// [-1, 1] (clamped). No cosine factor (see the module documentation). Finite and
-    /// non-negative for every finite input.
-    pub fn eval(&self, wi: V3<R>, wo: V3<R>, h: R) -> [R; 3] {
-        // `terms(..).value()` without the lobe weights, which only the pdf needs.
-        let (sin_i, cos_i, sin_o, cos_o, phi) = Self::angles(wi, wo);
-        let (a, n) = self.attenuations_and_azimuths(sin_o, cos_o, phi, h);
-        LobeTerms {
-            m: self.longitudinal(sin_i, cos_i, sin_o, cos_o),
-            an: core::array::from_fn(|p| a[p].map(|x| x * n[p])),
-            wn: [R::c(0.0); LOBES],
-        }
-        .value()
-    }
-
-    /// The contribution `M_p A_p N_p` of each lobe (R, TT, TRT, residual) per channel; they sum
-    /// to [`ChiangHair::eval`].
-    pub fn eval_lobes(&self, wi: V3<R>, wo: V3<R>, h: R) -> [[R; 3]; LOBES] {
-        self.terms(wi, wo, h).per_lobe()
     }
 
     /// Probability of choosing each lobe when sampling from wo: the channel-averaged A_p,
@@ -476,33 +358,18 @@ impl<R: Real> ChiangHair<R> {
         avg.map(|x| x / total)
     }
 
-    /// Solid-angle density of [`ChiangHair::sample`] choosing `wi` given `wo` and `h`.
-    pub fn pdf(&self, wi: V3<R>, wo: V3<R>, h: R) -> R {
-        self.terms(wi, wo, h).pdf()
-    }
-
-    /// Importance-samples wi given wo and h from three uniforms in [0, 1): `uc` chooses the lobe
-    /// (and, remapped, the azimuth), `u[0]` the longitudinal angle, `u[1]` the azimuth of the
-    /// longitudinal cone (d'Eon 2013; pbrt-v4 `Sample_f`). Branch-free, so it traces.
-    pub fn sample(&self, wo: V3<R>, h: R, u: [R; 2], uc: R) -> HairSample<R> {
-        let wi = self.sample_direction(wo, h, u, uc);
-        let terms = self.terms(wi, wo, h);
-        HairSample {
-            wi,
-            value: terms.value(),
-            pdf: terms.pdf(),
-        }
-    }
-
-    /// The direction [`ChiangHair::sample`] draws, without evaluating S and the pdf there.
-    pub(crate) fn sample_direction(&self, wo: V3<R>, h: R, u: [R; 2], uc: R) -> V3<R> {
+    /// The direction [`SampledBcsdf::sample`] draws, without evaluating S and the pdf there:
+    /// `u.lobe` chooses the lobe (and, remapped, the azimuth), `u.longitudinal` the angle about
+    /// the lobe's axis, `u.cone` the azimuth of the longitudinal cone (d'Eon 2013; pbrt-v4
+    /// `Sample_f`). `u.offset` is not used.
+    pub(crate) fn sample_direction(&self, wo: V3<R>, h: R, u: &RandomNumbers<R>) -> V3<R> {
         let one = R::c(1.0);
         let (sin_o, cos_o) = local_sin_cos_theta(wo);
-        let (gamma_o, gamma_t, a) = self.attenuations_at(sin_o, cos_o, h);
+        let (path, a) = self.attenuations_at(sin_o, cos_o, h);
         let w = Self::lobe_weights(&a);
 
         // Choose p: the first lobe whose cumulative weight exceeds uc; remap uc into it.
-        let uc = uc.clamp(R::c(0.0), one);
+        let uc = u.lobe.clamp(R::c(0.0), one);
         let mut lower = R::c(0.0);
         let mut chosen = [R::c(0.0); 6]; // p, lower, width, sin_op, cos_op, v_p
         for (p, &weight) in w.iter().enumerate() {
@@ -514,7 +381,14 @@ impl<R: Real> ChiangHair<R> {
             };
             let here = !uc.lt(lower) & uc.lt(upper);
             let (sin_op, cos_op) = self.tilted(p, sin_o, cos_o);
-            let candidate = [R::c(p as f64), lower, weight, sin_op, cos_op, self.v[p]];
+            let candidate = [
+                R::c(p as f64),
+                lower,
+                weight,
+                sin_op,
+                cos_op,
+                self.lobe(p).1,
+            ];
             for (slot, value) in chosen.iter_mut().zip(candidate) {
                 *slot = R::select(here, value, *slot);
             }
@@ -524,10 +398,10 @@ impl<R: Real> ChiangHair<R> {
         let uc = ((uc - lower) / width.max(R::c(1e-30))).clamp(R::c(0.0), R::c(1.0 - 1e-7));
 
         // Longitudinal: sample the lobe about its axis, then rotate about the cone.
-        let cos_theta = deon_lobe_sample_cos_theta(v, u[0]);
+        let cos_theta = deon_lobe_sample_cos_theta(v, u.longitudinal);
         let sin_theta = safe_sqrt(one - cos_theta * cos_theta);
         // cos(2 pi u1), with the argument kept in [-pi, pi] for GPU accuracy.
-        let cos_phi = -(R::c(2.0) * pi::<R>() * u[1] - pi::<R>()).cos();
+        let cos_phi = -(R::c(2.0) * pi::<R>() * u.cone - pi::<R>()).cos();
         let sin_i = (-cos_theta * sin_op + sin_theta * cos_phi * cos_op).clamp(-one, one);
         let cos_i = safe_sqrt(one - sin_i * sin_i);
 
@@ -536,14 +410,84 @@ impl<R: Real> ChiangHair<R> {
         let dphi = R::select(
             is_residual,
             R::c(2.0) * pi::<R>() * uc,
-            exit_angle(p, gamma_o, gamma_t) + sample_trimmed_logistic(uc, self.s),
+            exit_angle(p, path.gamma_o, path.gamma_t) + self.logistic().sample(uc),
         );
         let phi_o = azimuth_between(V3::c(1.0, 0.0, 0.0), V3::c(0.0, 1.0, 0.0), wo);
         local_direction(sin_i, cos_i, wrap_angle(phi_o + wrap_angle(dphi)))
     }
 }
 
-/// The projection of a local direction onto the fibre's normal plane (YZ).
-fn normal_plane<R: Real>(w: V3<R>) -> V3<R> {
-    V3::new(R::c(0.0), w.y, w.z)
+impl<R: Real> Bcsdf<R> for ChiangHair<R> {
+    fn lobe_names(&self) -> &'static [&'static str] {
+        &CHIANG_LOBES
+    }
+
+    fn uses_offset(&self) -> bool {
+        true
+    }
+
+    /// `S(wi, wo, h)` per channel for unit `wi`, `wo` in the local frame and offset `h` in
+    /// [-1, 1] (clamped). No cosine factor (see the module documentation). Finite and
+    /// non-negative for every finite input.
+    fn eval(&self, query: &Query<R>) -> [R; 3] {
+        // `terms(..).value()` without the lobe weights, which only the pdf needs.
+        let angles = PairAngles::of(query);
+        let (a, n) =
+            self.attenuations_and_azimuths(angles.sin_o, angles.cos_o, angles.phi, query.h);
+        LobeTerms {
+            m: self.longitudinal(&angles),
+            an: core::array::from_fn(|p| a[p].map(|x| x * n[p])),
+            wn: [R::c(0.0); LOBES],
+        }
+        .value()
+    }
+
+    /// `M_p A_p N_p` of each lobe (R, TT, TRT, residual) per channel.
+    fn eval_lobes(&self, query: &Query<R>) -> Vec<[R; 3]> {
+        self.terms(query).per_lobe()
+    }
+}
+
+impl<R: Real> SampledBcsdf<R> for ChiangHair<R> {
+    /// The density of [`SampledBcsdf::sample`]: `sum_p M_p w_p N_p` with the lobe-choice
+    /// probabilities w_p of pbrt-v4's `ApPDF`.
+    fn pdf(&self, query: &Query<R>) -> R {
+        self.terms(query).pdf()
+    }
+
+    /// Importance-samples wi given wo and h (d'Eon 2013; pbrt-v4 `Sample_f`; see
+    /// `sample_direction` for which number draws what). Branch-free, so it traces.
+    fn sample(&self, wo: V3<R>, h: R, u: RandomNumbers<R>) -> HairSample<R> {
+        let wi = self.sample_direction(wo, h, &u);
+        let terms = self.terms(&Query::new(wi, wo, h));
+        HairSample {
+            wi,
+            value: terms.value(),
+            pdf: terms.pdf(),
+        }
+    }
+}
+
+impl Model for ChiangHair<f64> {
+    type Uniforms<R: Real> = ChiangUniforms<R>;
+    type In<R: Real> = ChiangHair<R>;
+
+    fn uniforms(&self) -> ChiangUniforms<f64> {
+        self.uniforms
+    }
+
+    fn with_uniforms<R: Real>(&self, uniforms: ChiangUniforms<R>) -> ChiangHair<R> {
+        ChiangHair::from_uniforms(uniforms)
+    }
+}
+
+impl FromInputs for ChiangHair<f64> {
+    const NAME: &'static str = "chiang";
+    const SUMMARY: &'static str =
+        "Chiang et al. 2016 (pbrt-v4 HairBxDF): the near-field reference, S(wi, wo, h)";
+    const INPUTS: &'static [super::inputs::Input] = &HAIR_INPUTS;
+
+    fn from_inputs(values: &InputValues) -> Result<Self, ParamError> {
+        Ok(ChiangHair::new(&HairParams::from_inputs(values)?))
+    }
 }

@@ -1,13 +1,36 @@
-//! Complete single-fibre scattering models with evaluation, importance sampling and pdf.
+//! The model contract ([`Bcsdf`], [`SampledBcsdf`], [`Model`]), the generic consumers that come
+//! with it (batch evaluation, tracing, the registry of named models), and the reference models:
+//! Chiang et al. 2016's near field ([`ChiangHair`]) and far field ([`ChiangFarField`],
+//! [`ReferenceFarField`]), and Marschner et al. 2003 ([`Marschner2003`]).
+//!
+//! # Adding a model
+//!
+//! A model is one file: its parameters (validated types from [`crate::params`]), its uniforms
+//! ([`uniform_block!`](crate::uniform_block)), its physics ([`Bcsdf`], generic over
+//! [`crate::real::Real`]), [`Model`] (uniforms from the parameters, the model from the
+//! uniforms) and [`FromInputs`] (its name and named inputs); then one line in
+//! [`registry::MODELS`] makes `hairmath eval --model NAME` accept it. The README shows an
+//! example.
 
-pub mod batch;
+mod batch;
 mod chiang;
 mod far_field;
+mod inputs;
+mod marschner;
+mod model;
+pub mod registry;
 
-pub use batch::{batch_model, eval_batch, pdf_batch, BatchLengthError};
-pub use chiang::{
-    logistic_scale, longitudinal_variance, ChiangHair, ChiangParams, HairSample, CHIANG_CONSTANTS,
-};
+pub use batch::{eval_batch, pdf_batch, BatchLanes, BatchLengthError, BatchReal, LANES};
+pub use chiang::{logistic_scale, longitudinal_variance, ChiangHair, ChiangUniforms, CHIANG_LOBES};
 pub use far_field::{
-    ChiangFarField, FarFieldReference, FarFieldRule, FAR_FIELD_ERROR_BOUNDS, MAX_FAR_FIELD_NODES,
+    ChiangFarField, FarField, FarFieldReference, FarFieldRule, ReferenceFarField,
+    DEFAULT_FAR_FIELD_NODES, FAR_FIELD_ERROR_BOUNDS, MAX_FAR_FIELD_NODES, REFERENCE_REL_TOL,
+};
+pub use inputs::{
+    AbsorptionInput, FromInputs, Input, InputKind, InputValue, InputValues, HAIR_INPUTS,
+};
+pub use marschner::{Marschner2003, COLOR_BETA_N, MARSCHNER_LOBES};
+pub use model::{
+    query_of, query_parameters, trace_eval, trace_model, traced_inputs, Bcsdf, HairSample, Model,
+    Query, RandomNumbers, SampledBcsdf, UniformBlock, UniformField, UniformValue,
 };

@@ -20,6 +20,7 @@
 //! to `E_p(sigma_a) / E_p(0)` over sigma_a in [0, 2], for both path-length forms and for two
 //! direction settings ([`Directions`]).
 
+use crate::absorption::Absorption;
 use crate::absorption::PathLength;
 use crate::azimuthal::attenuations_at_offset;
 use crate::error::ParamError;
@@ -235,7 +236,7 @@ pub fn lobe_energies(
     rule: &EnergyRule,
 ) -> Result<[f64; 2], FitError> {
     let eta = FitSettings::new(eta)?.eta;
-    let sigma_a = ParamError::check("sigma_a", sigma_a, "must be finite and >= 0", |v| v >= 0.0)?;
+    let sigma_a = Absorption::grey(sigma_a)?.rgb()[0];
     Ok(energies(eta, sigma_a, path, directions, rule))
 }
 

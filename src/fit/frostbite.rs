@@ -20,10 +20,12 @@ use super::{
     check_eta, is_coordinate_minimum, linear_least_squares, minimize, minimize_scalar, ConstValue,
     ConstantFit, FitError, FitOutput, FitSettings, GeneratedConst, Minimum,
 };
+use crate::absorption::Absorption;
 use crate::absorption::PathLength;
 use crate::azimuthal::{attenuations_at_offset, exit_angle_of_offset, trimmed_logistic};
 use crate::bcsdf::logistic_scale;
 use crate::error::ParamError;
+use crate::params::AzimuthalRoughness;
 use crate::quadrature::{gauss_legendre, integrate};
 use crate::real::wrap_angle;
 use core::f64::consts::{FRAC_PI_2, PI};
@@ -79,9 +81,7 @@ impl TtSlice {
     /// `theta_o` outside [-pi/2, pi/2], `beta_n` outside (0, 1], `eta` outside (1, 3].
     pub fn new(theta_o: f64, beta_n: f64, eta: f64) -> Result<Self, ParamError> {
         let theta_o = check_theta("theta_o", theta_o)?;
-        let beta_n = ParamError::check("beta_n", beta_n, "must be in (0, 1]", |v| {
-            v > 0.0 && v <= 1.0
-        })?;
+        let beta_n = AzimuthalRoughness::new(beta_n)?.get();
         Ok(TtSlice {
             sin_theta_o: theta_o.sin(),
             eta: check_eta(eta)?,
@@ -429,7 +429,7 @@ impl AttenuationProblem {
             n > 0.0
         })?;
         for &s in sigma_a {
-            ParamError::check("sigma_a", s, "must be finite and >= 0", |v| v >= 0.0)?;
+            Absorption::grey(s)?;
         }
         for &t in theta_d {
             check_theta("theta_d", t)?;

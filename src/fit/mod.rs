@@ -110,15 +110,11 @@ impl FitSettings {
     }
 }
 
-/// The refractive indices the fits accept: (1, 3].
+/// The refractive indices the fits accept: those of [`crate::params::RefractiveIndex`], whose
+/// domain and message every consumer shares.
 ///
 /// # Errors
 /// [`crate::error::ParamError::OutOfRange`] naming `eta` otherwise.
 pub(crate) fn check_eta(eta: f64) -> Result<f64, crate::error::ParamError> {
-    crate::error::ParamError::check(
-        "eta",
-        eta,
-        "the fibre's refractive index must be in (1, 3]",
-        |v| v > 1.0 && v <= 3.0,
-    )
+    crate::params::RefractiveIndex::new(eta).map(f64::from)
 }

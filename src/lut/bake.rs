@@ -5,11 +5,14 @@ use core::f64::consts::{FRAC_PI_2, PI};
 
 use super::table::{Axis, ParamValue, Table, TableMeta};
 use super::LutError;
-use crate::absorption::Rgb;
-use crate::azimuthal::{marschner_np, CausticParams, MarschnerPath, LOBES};
-use crate::bcsdf::{ChiangHair, ChiangParams};
+use crate::absorption::Absorption;
+use crate::azimuthal::{CausticParams, LOBES};
+use crate::bcsdf::{ChiangHair, Marschner2003};
 use crate::error::ParamError;
-use crate::lobe::gaussian_lobe;
+use crate::params::{
+    AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, MarschnerLobes,
+    RefractiveIndex,
+};
 
 /// A table recipe: the axes for given sizes, the channels, the parameters, and the direct
 /// evaluation that [`bake`] samples on the grid and [`lookup_error`] compares against.
@@ -48,19 +51,6 @@ fn check_sizes(kind: &str, sizes: &[usize], dims: usize) -> Result<(), LutError>
         )));
     }
     Ok(())
-}
-
-fn check_sigma_a(sigma_a: Rgb) -> Result<Rgb, ParamError> {
-    crate::absorption::validate_sigma_a(sigma_a)
-}
-
-fn check_eta(eta: f64) -> Result<f64, ParamError> {
-    ParamError::check(
-        "eta",
-        eta,
-        "the relative index of refraction must be in (1, 10]",
-        |v| v > 1.0 && v <= 10.0,
-    )
 }
 
 fn caustic_parameters(out: &mut Vec<(String, ParamValue)>, caustic: &Option<CausticParams>) {
@@ -103,49 +93,21 @@ fn clamp_to(axis_min: f64, axis_max: f64, x: f64) -> f64 {
 /// The 8-bit scale of the M channels is each channel's maximum. (The slides in the seeds print
 /// the M lookup as `lookup1(cosThetaI, cosThetaO)` right after computing sines; the texture is
 /// indexed by the sines, as the pseudocode's vertex shader computes.)
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct NguyenM {
-    beta_r: f64,
-    alpha_r: f64,
+    lobes: MarschnerLobes,
 }
 
 impl NguyenM {
-    /// `beta_r` in (0, pi/4] radians, `alpha_r` with |alpha_r| <= pi/8 radians (Marschner's
-    /// table: beta_R 5 to 10 degrees, alpha_R -10 to -5 degrees).
-    ///
-    /// # Errors
-    /// [`ParamError::OutOfRange`] naming the parameter.
-    pub fn new(beta_r: f64, alpha_r: f64) -> Result<Self, ParamError> {
-        Ok(NguyenM {
-            beta_r: ParamError::check(
-                "beta_r",
-                beta_r,
-                "the R lobe width must be in (0, pi/4] radians",
-                |v| v > 0.0 && v <= PI / 4.0,
-            )?,
-            alpha_r: ParamError::check(
-                "alpha_r",
-                alpha_r,
-                "the R lobe shift must satisfy |alpha_r| <= pi/8 radians",
-                |v| v.abs() <= PI / 8.0,
-            )?,
-        })
+    /// The M texture of Marschner's lobes `lobes` (Marschner's table: beta_R 5 to 10
+    /// degrees, alpha_R -10 to -5 degrees; the default is alpha_R = -5, beta_R = 7.5 degrees).
+    pub fn new(lobes: MarschnerLobes) -> Self {
+        NguyenM { lobes }
     }
 
-    /// (alpha_p, beta_p) for p = R, TT, TRT.
+    /// (alpha_p, beta_p) for p = R, TT, TRT ([`MarschnerLobes::lobes`]).
     pub fn lobes(&self) -> [(f64, f64); 3] {
-        let (a, b) = (self.alpha_r, self.beta_r);
-        [(a, b), (-a / 2.0, b / 2.0), (-1.5 * a, 2.0 * b)]
-    }
-}
-
-impl Default for NguyenM {
-    /// beta_R = 7.5 degrees, alpha_R = -5 degrees.
-    fn default() -> Self {
-        NguyenM {
-            beta_r: 7.5f64.to_radians(),
-            alpha_r: (-5f64).to_radians(),
-        }
+        self.lobes.lobes()
     }
 }
 
@@ -181,8 +143,11 @@ impl Baker for NguyenM {
     fn parameters(&self) -> Vec<(String, ParamValue)> {
         let [r, tt, trt] = self.lobes();
         vec![
-            ("beta_r".into(), ParamValue::Number(self.beta_r)),
-            ("alpha_r".into(), ParamValue::Number(self.alpha_r)),
+            ("beta_r".into(), ParamValue::Number(self.lobes.beta_r.get())),
+            (
+                "alpha_r".into(),
+                ParamValue::Number(self.lobes.alpha_r.get()),
+            ),
             (
                 "alpha_p".into(),
                 ParamValue::Numbers(vec![r.0, tt.0, trt.0]),
@@ -198,9 +163,7 @@ impl Baker for NguyenM {
         let theta_o = clamp_to(-1.0, 1.0, coords[1]).asin();
         let theta_h = 0.5 * (theta_i + theta_o);
         let theta_d = 0.5 * (theta_o - theta_i);
-        for (o, (alpha, beta)) in out.iter_mut().zip(self.lobes()) {
-            *o = gaussian_lobe(beta, theta_h - alpha);
-        }
+        out[..3].copy_from_slice(&self.lobes.longitudinal(theta_h));
         out[3] = theta_d.cos();
     }
 }
@@ -219,23 +182,21 @@ impl Baker for NguyenM {
 /// treatment applies to TRT when enabled. 8-bit scales are each channel's maximum.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NguyenN {
-    eta: f64,
-    sigma_a: Rgb,
-    caustic: Option<CausticParams>,
+    model: Marschner2003,
 }
 
 impl NguyenN {
-    /// `eta` in (1, 10], `sigma_a` finite and >= 0 per channel, `caustic` the TRT caustic
-    /// treatment or `None`.
-    ///
-    /// # Errors
-    /// [`ParamError::OutOfRange`] naming the parameter.
-    pub fn new(eta: f64, sigma_a: Rgb, caustic: Option<CausticParams>) -> Result<Self, ParamError> {
-        Ok(NguyenN {
-            eta: check_eta(eta)?,
-            sigma_a: check_sigma_a(sigma_a)?,
-            caustic,
-        })
+    /// The N textures of Marschner's model ([`Marschner2003::azimuthal`]) for index `eta`,
+    /// absorption `sigma_a` and the TRT caustic treatment `caustic` (or `None`).
+    pub fn new(eta: RefractiveIndex, sigma_a: Absorption, caustic: Option<CausticParams>) -> Self {
+        NguyenN {
+            model: Marschner2003 {
+                lobes: MarschnerLobes::default(),
+                eta,
+                sigma_a,
+                caustic,
+            },
+        }
     }
 }
 
@@ -272,45 +233,24 @@ impl Baker for NguyenN {
     }
     fn parameters(&self) -> Vec<(String, ParamValue)> {
         let mut p = vec![
-            ("eta".into(), ParamValue::Number(self.eta)),
-            ("sigma_a".into(), ParamValue::Numbers(self.sigma_a.to_vec())),
+            ("eta".into(), ParamValue::Number(self.model.eta.get())),
+            (
+                "sigma_a".into(),
+                ParamValue::Numbers(self.model.sigma_a.rgb().to_vec()),
+            ),
             (
                 "path_length".into(),
                 ParamValue::Text("Marschner2003".into()),
             ),
         ];
-        caustic_parameters(&mut p, &self.caustic);
+        caustic_parameters(&mut p, &self.model.caustic);
         p
     }
     fn eval(&self, coords: &[f64], out: &mut [f64]) {
         let phi = clamp_to(-1.0, 1.0, coords[0]).acos();
         let c = clamp_to(0.0, 1.0, coords[1]);
         let sin_d = (1.0 - c * c).max(0.0).sqrt();
-        let caustic = self.caustic.as_ref();
-        let tt = marschner_np(
-            MarschnerPath::TT,
-            phi,
-            sin_d,
-            self.eta,
-            self.sigma_a,
-            caustic,
-        );
-        let r = marschner_np(
-            MarschnerPath::R,
-            phi,
-            sin_d,
-            self.eta,
-            self.sigma_a,
-            caustic,
-        );
-        let trt = marschner_np(
-            MarschnerPath::TRT,
-            phi,
-            sin_d,
-            self.eta,
-            self.sigma_a,
-            caustic,
-        );
+        let [r, tt, trt] = self.model.azimuthal(phi, sin_d);
         out[..3].copy_from_slice(&tt);
         out[3] = r[0];
         out[4..7].copy_from_slice(&trt);
@@ -326,31 +266,35 @@ impl Baker for NguyenN {
 /// Gerard's eq. 7, which the shader multiplies in. 8-bit scales are each channel's maximum.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GerardN {
-    eta: f64,
+    model: Marschner2003,
     theta_d_max: f64,
-    caustic: Option<CausticParams>,
 }
 
 impl GerardN {
-    /// `eta` in (1, 10], `theta_d_max` in (0, pi/2] radians, `caustic` the TRT caustic
-    /// treatment or `None`.
+    /// The table of Marschner's N_p ([`Marschner2003::azimuthal`]) without absorption, for
+    /// index `eta`, `theta_d_max` in (0, pi/2] radians and the TRT caustic treatment `caustic`
+    /// (or `None`).
     ///
     /// # Errors
-    /// [`ParamError::OutOfRange`] naming the parameter.
+    /// [`ParamError::OutOfRange`] naming `theta_d_max`.
     pub fn new(
-        eta: f64,
+        eta: RefractiveIndex,
         theta_d_max: f64,
         caustic: Option<CausticParams>,
     ) -> Result<Self, ParamError> {
         Ok(GerardN {
-            eta: check_eta(eta)?,
+            model: Marschner2003 {
+                lobes: MarschnerLobes::default(),
+                eta,
+                sigma_a: Absorption::NONE,
+                caustic,
+            },
             theta_d_max: ParamError::check(
                 "theta_d_max",
                 theta_d_max,
                 "must be in (0, pi/2] radians",
                 |v| v > 0.0 && v <= FRAC_PI_2,
             )?,
-            caustic,
         })
     }
 }
@@ -384,19 +328,19 @@ impl Baker for GerardN {
     }
     fn parameters(&self) -> Vec<(String, ParamValue)> {
         let mut p = vec![
-            ("eta".into(), ParamValue::Number(self.eta)),
+            ("eta".into(), ParamValue::Number(self.model.eta.get())),
             ("sigma_a".into(), ParamValue::Numbers(vec![0.0; 3])),
             ("theta_d_max".into(), ParamValue::Number(self.theta_d_max)),
         ];
-        caustic_parameters(&mut p, &self.caustic);
+        caustic_parameters(&mut p, &self.model.caustic);
         p
     }
     fn eval(&self, coords: &[f64], out: &mut [f64]) {
         let phi = clamp_to(0.0, PI, coords[0]);
         let theta_d = clamp_to(0.0, self.theta_d_max, coords[1]);
-        let sin_d = theta_d.sin();
-        for (path, o) in MarschnerPath::ALL.into_iter().zip(out.iter_mut()) {
-            *o = marschner_np(path, phi, sin_d, self.eta, [0.0; 3], self.caustic.as_ref())[0];
+        let n = self.model.azimuthal(phi, theta_d.sin());
+        for (o, np) in out.iter_mut().zip(n) {
+            *o = np[0];
         }
     }
 }
@@ -418,51 +362,60 @@ pub const FAR_FIELD_CHANNELS: usize = 3 * LOBES;
 /// about 1 s; 8-bit scales are each channel's maximum.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FarFieldN {
-    eta: f64,
-    sigma_a: Rgb,
-    beta_n_min: f64,
-    beta_n_max: f64,
+    eta: RefractiveIndex,
+    sigma_a: Absorption,
+    beta_n_min: AzimuthalRoughness,
+    beta_n_max: AzimuthalRoughness,
     rel_tol: f64,
 }
 
 impl FarFieldN {
-    /// `eta` in (1, 10], `sigma_a` finite and >= 0, `0 < beta_n_min < beta_n_max <= 1`,
-    /// `rel_tol` in [1e-12, 1e-2].
+    /// The table for index `eta`, absorption `sigma_a`, beta_n from `beta_n_min` to
+    /// `beta_n_max` and reference integrals to relative tolerance `rel_tol` in [1e-12, 1e-2].
     ///
     /// # Errors
-    /// [`ParamError::OutOfRange`] naming the parameter.
+    /// [`ParamError::OutOfRange`] naming `beta_n_max` when it is not above `beta_n_min`, or
+    /// `rel_tol`.
     pub fn new(
-        eta: f64,
-        sigma_a: Rgb,
-        beta_n_min: f64,
-        beta_n_max: f64,
+        eta: RefractiveIndex,
+        sigma_a: Absorption,
+        beta_n_min: AzimuthalRoughness,
+        beta_n_max: AzimuthalRoughness,
         rel_tol: f64,
     ) -> Result<Self, ParamError> {
-        let beta_n_min = ParamError::check("beta_n_min", beta_n_min, "must be in (0, 1)", |v| {
-            v > 0.0 && v < 1.0
-        })?;
+        ParamError::check(
+            "beta_n_max",
+            beta_n_max.get(),
+            "must be in (beta_n_min, 1]",
+            |v| v > beta_n_min.get(),
+        )?;
         Ok(FarFieldN {
-            eta: check_eta(eta)?,
-            sigma_a: check_sigma_a(sigma_a)?,
+            eta,
+            sigma_a,
             beta_n_min,
-            beta_n_max: ParamError::check(
-                "beta_n_max",
-                beta_n_max,
-                "must be in (beta_n_min, 1]",
-                |v| v > beta_n_min && v <= 1.0,
-            )?,
+            beta_n_max,
             rel_tol: ParamError::check("rel_tol", rel_tol, "must be in [1e-12, 1e-2]", |v| {
                 (1e-12..=1e-2).contains(&v)
             })?,
         })
     }
 
+    /// The reference model the table samples at `beta_n` (clamped to the table's range; beta_m
+    /// and alpha do not affect N).
     fn hair(&self, beta_n: f64) -> ChiangHair<f64> {
-        let beta_n = clamp_to(self.beta_n_min, self.beta_n_max, beta_n);
-        // Valid by construction: beta_n in (0, 1], eta > 1, sigma_a >= 0.
-        let params = ChiangParams::new(0.3, beta_n, 0.0, self.eta, self.sigma_a)
-            .unwrap_or_else(|_| unreachable!("validated far-field parameters"));
-        ChiangHair::new(&params)
+        let (lo, hi) = (self.beta_n_min, self.beta_n_max);
+        let beta_n = if beta_n.is_nan() {
+            lo
+        } else {
+            AzimuthalRoughness::new(beta_n.clamp(lo.get(), hi.get())).unwrap_or(lo)
+        };
+        ChiangHair::new(&HairParams {
+            beta_m: LongitudinalRoughness::new(0.3).unwrap_or_else(|_| unreachable!()),
+            beta_n,
+            alpha: CuticleTilt::new(0.0).unwrap_or_else(|_| unreachable!()),
+            eta: self.eta,
+            sigma_a: self.sigma_a,
+        })
     }
 }
 
@@ -487,7 +440,12 @@ impl Baker for FarFieldN {
         Ok(vec![
             Axis::new("phi", 0.0, PI, sizes[0])?,
             Axis::new("theta_o", 0.0, FRAC_PI_2, sizes[1])?,
-            Axis::new("beta_n", self.beta_n_min, self.beta_n_max, sizes[2])?,
+            Axis::new(
+                "beta_n",
+                self.beta_n_min.get(),
+                self.beta_n_max.get(),
+                sizes[2],
+            )?,
         ])
     }
     fn channels(&self) -> Vec<String> {
@@ -501,10 +459,19 @@ impl Baker for FarFieldN {
     }
     fn parameters(&self) -> Vec<(String, ParamValue)> {
         vec![
-            ("eta".into(), ParamValue::Number(self.eta)),
-            ("sigma_a".into(), ParamValue::Numbers(self.sigma_a.to_vec())),
-            ("beta_n_min".into(), ParamValue::Number(self.beta_n_min)),
-            ("beta_n_max".into(), ParamValue::Number(self.beta_n_max)),
+            ("eta".into(), ParamValue::Number(self.eta.get())),
+            (
+                "sigma_a".into(),
+                ParamValue::Numbers(self.sigma_a.rgb().to_vec()),
+            ),
+            (
+                "beta_n_min".into(),
+                ParamValue::Number(self.beta_n_min.get()),
+            ),
+            (
+                "beta_n_max".into(),
+                ParamValue::Number(self.beta_n_max.get()),
+            ),
             ("rel_tol".into(), ParamValue::Number(self.rel_tol)),
             ("path_length".into(), ParamValue::Text("chord".into())),
         ]

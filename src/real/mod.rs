@@ -20,7 +20,9 @@ pub mod traced;
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Sub, SubAssign};
 
-pub use traced::{trace, Graph, Traced};
+pub use traced::{
+    trace, trace_with, ArgType, Graph, Parameter, ResultType, Signature, StructType, Traced,
+};
 
 /// A scalar (or a SIMD vector of scalars, or a symbolic value) shading code computes with.
 ///

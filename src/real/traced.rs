@@ -1,14 +1,21 @@
 //! Symbolic tracing: running generic code on [`Traced`] values records it as a graph.
 //!
-//! [`trace`] calls a closure with symbolic inputs; every arithmetic operation appends a node
-//! to a thread-local graph (identical nodes are shared, so the graph is in SSA form with common
+//! [`trace`] (anonymous scalar arguments) and [`trace_with`] (named arguments of a
+//! [`Signature`]: scalars, `vec3<f32>` vectors and named structs such as a model's uniforms)
+//! call a closure with symbolic inputs; every arithmetic operation appends a node to a
+//! thread-local graph (identical nodes are shared, so the graph is in SSA form with common
 //! subexpressions merged). The finished [`Graph`] prints as a WGSL function
-//! ([`Graph::to_wgsl`]) and can be interpreted in `f32` ([`Graph::eval_f32`]) with exactly
-//! the operations of the `f32` instantiation, which is how tests prove that the generated
-//! shader code computes what the CPU code computes.
+//! ([`Graph::to_wgsl`], with the declarations of the structs its arguments use) and can be
+//! interpreted in `f32` ([`Graph::eval_f32`]) with exactly the operations of the `f32`
+//! instantiation, which is how tests prove that the generated shader code computes what the
+//! CPU code computes.
 //!
 //! Traced values have single-precision semantics (`Real::DOUBLE` is false) and constants
 //! are rounded to `f32` when recorded.
+//!
+//! A trace that panics inside its closure leaves nothing behind: the thread can trace again.
+//! Using a [`Traced`] value outside the trace that made it (after it ended, or inside another
+//! one) panics with a message saying so, rather than recording a wrong graph.
 
 use super::Real;
 use core::cell::RefCell;
@@ -81,69 +88,262 @@ pub enum Node {
     Select(u32, u32, u32),
 }
 
-/// A recorded computation: nodes in evaluation order, the number of inputs, and the outputs.
+/// The shader type of one argument (or struct field) of a traced function.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ArgType {
+    /// `f32`.
+    Scalar,
+    /// `vec3<f32>`, components `x`, `y`, `z`.
+    Vec3,
+    /// A named struct, for example a model's uniforms.
+    Struct(StructType),
+}
+
+/// A named struct of a traced function's arguments: its fields in declaration order.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct StructType {
+    /// The struct's name in shader code.
+    pub name: String,
+    /// (field name, field type) in declaration order.
+    pub fields: Vec<(String, ArgType)>,
+}
+
+/// One named argument of a traced function.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Parameter {
+    /// The argument's name in shader code.
+    pub name: String,
+    /// Its type.
+    pub ty: ArgType,
+}
+
+/// What a traced function returns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ResultType {
+    /// `f32` for one output, `array<f32, N>` for N outputs.
+    Scalars,
+    /// `vec3<f32>` of exactly three outputs (an RGB value, a direction).
+    Vec3,
+}
+
+/// The arguments and result of a traced function. The closure of [`trace_with`] receives one
+/// [`Traced`] input per scalar: the arguments in order, a vector as its x, y, z, a struct as
+/// its fields in order (recursively).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Signature {
+    /// The arguments, in order.
+    pub parameters: Vec<Parameter>,
+    /// The result type.
+    pub result: ResultType,
+}
+
+impl ArgType {
+    /// Number of scalars of the type.
+    pub fn width(&self) -> usize {
+        match self {
+            ArgType::Scalar => 1,
+            ArgType::Vec3 => 3,
+            ArgType::Struct(s) => s.fields.iter().map(|(_, t)| t.width()).sum(),
+        }
+    }
+
+    /// The shader expressions of the type's scalars for a value written `base`.
+    fn scalar_paths(&self, base: &str, out: &mut Vec<String>) {
+        match self {
+            ArgType::Scalar => out.push(base.to_string()),
+            ArgType::Vec3 => out.extend(["x", "y", "z"].map(|c| format!("{base}.{c}"))),
+            ArgType::Struct(s) => {
+                for (name, ty) in &s.fields {
+                    ty.scalar_paths(&format!("{base}.{name}"), out);
+                }
+            }
+        }
+    }
+
+    fn wgsl(&self) -> String {
+        match self {
+            ArgType::Scalar => "f32".into(),
+            ArgType::Vec3 => "vec3<f32>".into(),
+            ArgType::Struct(s) => s.name.clone(),
+        }
+    }
+
+    /// Appends the struct declarations this type needs (inner structs first), once each.
+    fn struct_declarations(&self, seen: &mut Vec<String>, out: &mut String) {
+        let ArgType::Struct(s) = self else { return };
+        for (_, ty) in &s.fields {
+            ty.struct_declarations(seen, out);
+        }
+        if seen.contains(&s.name) {
+            return;
+        }
+        seen.push(s.name.clone());
+        let _ = writeln!(out, "struct {} {{", s.name);
+        for (name, ty) in &s.fields {
+            let _ = writeln!(out, "    {name}: {},", ty.wgsl());
+        }
+        out.push_str("}\n\n");
+    }
+}
+
+impl Signature {
+    /// `count` anonymous scalar arguments `x0, x1, ...`, scalar results.
+    pub fn scalars(count: usize) -> Self {
+        Signature {
+            parameters: (0..count)
+                .map(|i| Parameter {
+                    name: format!("x{i}"),
+                    ty: ArgType::Scalar,
+                })
+                .collect(),
+            result: ResultType::Scalars,
+        }
+    }
+
+    /// Number of scalar inputs of the traced closure.
+    pub fn input_count(&self) -> usize {
+        self.parameters.iter().map(|p| p.ty.width()).sum()
+    }
+
+    /// The shader expression of each scalar input, in input order (`wi.x`, `uniforms.eta`).
+    fn input_paths(&self) -> Vec<String> {
+        let mut out = Vec::with_capacity(self.input_count());
+        for p in &self.parameters {
+            p.ty.scalar_paths(&p.name, &mut out);
+        }
+        out
+    }
+}
+
+/// A recorded computation: nodes in evaluation order, the signature of the traced function,
+/// and the outputs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Graph {
     nodes: Vec<Node>,
-    inputs: usize,
+    signature: Signature,
     outputs: Vec<u32>,
 }
 
-#[derive(Default)]
 struct Recorder {
+    /// Distinguishes the values of this trace from those of earlier ones.
+    trace: u32,
     nodes: Vec<Node>,
     index: HashMap<Node, u32>,
 }
 
 thread_local! {
     static RECORDER: RefCell<Option<Recorder>> = const { RefCell::new(None) };
+    static TRACES: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
 }
 
-fn record(node: Node) -> u32 {
+/// Records `node`, whose operands are values of the traces `operands`, in the running trace;
+/// returns its index.
+///
+/// # Panics
+/// If no trace is running, or an operand comes from another trace.
+fn record(node: Node, operands: &[u32]) -> (u32, u32) {
     RECORDER.with(|r| {
         let mut guard = r.borrow_mut();
-        let rec = guard
-            .as_mut()
-            .expect("Traced values can only be used inside hairmath::real::trace");
+        let rec = guard.as_mut().expect(
+            "a Traced value was used outside hairmath::real::trace (traced values live only \
+             inside the closure of the trace that made them)",
+        );
+        assert!(
+            operands.iter().all(|&t| t == rec.trace),
+            "a Traced value from another trace was used (traced values live only inside the \
+             closure of the trace that made them)"
+        );
         if let Some(&id) = rec.index.get(&node) {
-            return id;
+            return (id, rec.trace);
         }
         let id = rec.nodes.len() as u32;
         rec.nodes.push(node);
         rec.index.insert(node, id);
-        id
+        (id, rec.trace)
     })
 }
 
-/// A symbolic scalar: the index of a node in the graph being traced.
+/// A symbolic scalar: a node of the graph being traced.
+///
+/// # Panics
+/// Every operation on a traced value panics when no trace is running or when the value was
+/// recorded by another trace: traced values live only inside the closure of [`trace`] or
+/// [`trace_with`] that made them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Traced(u32);
+pub struct Traced {
+    node: u32,
+    trace: u32,
+}
 
-/// A symbolic boolean produced by comparing [`Traced`] values.
+/// A symbolic boolean produced by comparing [`Traced`] values (same lifetime rule).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct TracedMask(u32);
+pub struct TracedMask {
+    node: u32,
+    trace: u32,
+}
 
-/// Traces `f` called with `inputs` symbolic arguments and returns the recorded graph.
+/// Ends the running trace when dropped, also when the traced closure panics, so that the thread
+/// can trace again.
+struct Session;
+
+impl Drop for Session {
+    fn drop(&mut self) {
+        RECORDER.with(|r| r.borrow_mut().take());
+    }
+}
+
+/// Traces `f` called with `inputs` anonymous scalar arguments (`x0, x1, ...` in WGSL) and
+/// returns the recorded graph: [`trace_with`] for [`Signature::scalars`].
 ///
 /// # Panics
 /// If called while another trace is running on the same thread (traces do not nest).
 pub fn trace(inputs: usize, f: impl FnOnce(&[Traced]) -> Vec<Traced>) -> Graph {
+    trace_with(Signature::scalars(inputs), f)
+}
+
+/// Traces `f` called with one symbolic input per scalar of `signature` and returns the
+/// recorded graph. If `f` panics, the trace is discarded and the panic continues.
+///
+/// # Panics
+/// If called while another trace is running on the same thread (traces do not nest), or if
+/// the result type is [`ResultType::Vec3`] and `f` does not return exactly three values.
+pub fn trace_with(signature: Signature, f: impl FnOnce(&[Traced]) -> Vec<Traced>) -> Graph {
+    let trace = TRACES.with(|t| {
+        let id = t.get().wrapping_add(1);
+        t.set(id);
+        id
+    });
     RECORDER.with(|r| {
         let mut guard = r.borrow_mut();
         assert!(guard.is_none(), "hairmath::real::trace does not nest");
-        *guard = Some(Recorder::default());
+        *guard = Some(Recorder {
+            trace,
+            nodes: Vec::new(),
+            index: HashMap::new(),
+        });
     });
-    let args: Vec<Traced> = (0..inputs)
-        .map(|i| Traced(record(Node::Input(i as u32))))
+    let session = Session;
+    let args: Vec<Traced> = (0..signature.input_count())
+        .map(|i| Traced::from_record(record(Node::Input(i as u32), &[])))
         .collect();
     let outputs = f(&args);
     let rec = RECORDER
         .with(|r| r.borrow_mut().take())
-        .expect("recorder present");
+        .expect("the recorder lives until the session ends");
+    drop(session);
+    assert!(
+        signature.result != ResultType::Vec3 || outputs.len() == 3,
+        "a vec3 result needs exactly three outputs, not {}",
+        outputs.len()
+    );
+    assert!(
+        outputs.iter().all(|t| t.trace == trace),
+        "a traced function returned a value of another trace"
+    );
     Graph {
         nodes: rec.nodes,
-        inputs,
-        outputs: outputs.iter().map(|t| t.0).collect(),
+        signature,
+        outputs: outputs.iter().map(|t| t.node).collect(),
     }
 }
 
@@ -153,9 +353,14 @@ impl Graph {
         &self.nodes
     }
 
-    /// Number of inputs of the traced function.
+    /// The signature of the traced function.
+    pub fn signature(&self) -> &Signature {
+        &self.signature
+    }
+
+    /// Number of scalar inputs of the traced function.
     pub fn input_count(&self) -> usize {
-        self.inputs
+        self.signature.input_count()
     }
 
     /// Number of outputs of the traced function.
@@ -198,7 +403,7 @@ impl Graph {
     pub fn eval_f32(&self, inputs: &[f32]) -> Vec<f32> {
         assert_eq!(
             inputs.len(),
-            self.inputs,
+            self.input_count(),
             "wrong number of inputs for traced graph"
         );
         let mut value = vec![0.0_f32; self.nodes.len()];
@@ -222,26 +427,44 @@ impl Graph {
         self.outputs.iter().map(|&o| value[o as usize]).collect()
     }
 
-    /// Prints the graph as a WGSL function `fn name(x0: f32, ...) -> T` where `T` is `f32`
-    /// for one output and `array<f32, N>` for several. Only nodes the outputs depend on
-    /// are emitted, one `let` per node, constants inline.
+    /// Prints the graph as WGSL: the declarations of the structs its arguments use, then
+    /// `fn name(arguments) -> T`, with the arguments of the signature (`x0: f32, ...` for
+    /// [`trace`]) and `T` `vec3<f32>` for [`ResultType::Vec3`], else `f32` for one output and
+    /// `array<f32, N>` for several. Only nodes the outputs depend on are emitted, one `let` per
+    /// node, constants inline; inputs are read from the arguments by name (`wi.x`,
+    /// `uniforms.eta`).
     pub fn to_wgsl(&self, name: &str) -> String {
         let live = self.live();
+        let paths = self.signature.input_paths();
         let mut out = String::new();
-        let params: Vec<String> = (0..self.inputs).map(|i| format!("x{i}: f32")).collect();
-        let ret = match self.outputs.len() {
-            1 => "f32".to_string(),
-            n => format!("array<f32, {n}>"),
+        let mut seen = Vec::new();
+        for p in &self.signature.parameters {
+            p.ty.struct_declarations(&mut seen, &mut out);
+        }
+        let params: Vec<String> = self
+            .signature
+            .parameters
+            .iter()
+            .map(|p| format!("{}: {}", p.name, p.ty.wgsl()))
+            .collect();
+        let ret = match (self.signature.result, self.outputs.len()) {
+            (ResultType::Vec3, _) => "vec3<f32>".to_string(),
+            (ResultType::Scalars, 1) => "f32".to_string(),
+            (ResultType::Scalars, n) => format!("array<f32, {n}>"),
         };
         let _ = writeln!(out, "fn {name}({}) -> {ret} {{", params.join(", "));
         for (i, node) in self.nodes.iter().enumerate() {
             if !live[i] || matches!(node, Node::Input(_) | Node::Const(_)) {
                 continue;
             }
-            let _ = writeln!(out, "    let t{i} = {};", self.expression(node));
+            let _ = writeln!(out, "    let t{i} = {};", self.expression(node, &paths));
         }
-        let results: Vec<String> = self.outputs.iter().map(|&o| self.operand(o)).collect();
-        if results.len() == 1 {
+        let results: Vec<String> = self
+            .outputs
+            .iter()
+            .map(|&o| self.operand(o, &paths))
+            .collect();
+        if results.len() == 1 && self.signature.result == ResultType::Scalars {
             let _ = writeln!(out, "    return {};", results[0]);
         } else {
             let _ = writeln!(out, "    return {ret}({});", results.join(", "));
@@ -250,16 +473,16 @@ impl Graph {
         out
     }
 
-    fn operand(&self, id: u32) -> String {
+    fn operand(&self, id: u32, paths: &[String]) -> String {
         match self.nodes[id as usize] {
-            Node::Input(k) => format!("x{k}"),
+            Node::Input(k) => paths[k as usize].clone(),
             Node::Const(bits) => wgsl_literal(f32::from_bits(bits)),
             _ => format!("t{id}"),
         }
     }
 
-    fn expression(&self, node: &Node) -> String {
-        let o = |k: u32| self.operand(k);
+    fn expression(&self, node: &Node, paths: &[String]) -> String {
+        let o = |k: u32| self.operand(k, paths);
         match *node {
             Node::Input(_) | Node::Const(_) => unreachable!("inlined"),
             Node::Unary(Unary::Neg, a) => format!("-{}", o(a)),
@@ -361,7 +584,7 @@ macro_rules! traced_binary {
         impl $trait for Traced {
             type Output = Traced;
             fn $method(self, rhs: Traced) -> Traced {
-                Traced(record(Node::Binary($op, self.0, rhs.0)))
+                self.binary($op, rhs)
             }
         }
         impl $assign_trait for Traced {
@@ -379,7 +602,7 @@ traced_binary!(Mul, mul, MulAssign, mul_assign, Binary::Mul);
 impl Div for Traced {
     type Output = Traced;
     fn div(self, rhs: Traced) -> Traced {
-        Traced(record(Node::Binary(Binary::Div, self.0, rhs.0)))
+        self.binary(Binary::Div, rhs)
     }
 }
 
@@ -393,30 +616,48 @@ impl Neg for Traced {
 impl BitAnd for TracedMask {
     type Output = TracedMask;
     fn bitand(self, rhs: TracedMask) -> TracedMask {
-        TracedMask(record(Node::And(self.0, rhs.0)))
+        TracedMask::from_record(record(
+            Node::And(self.node, rhs.node),
+            &[self.trace, rhs.trace],
+        ))
     }
 }
 
 impl BitOr for TracedMask {
     type Output = TracedMask;
     fn bitor(self, rhs: TracedMask) -> TracedMask {
-        TracedMask(record(Node::Or(self.0, rhs.0)))
+        TracedMask::from_record(record(
+            Node::Or(self.node, rhs.node),
+            &[self.trace, rhs.trace],
+        ))
     }
 }
 
 impl Not for TracedMask {
     type Output = TracedMask;
     fn not(self) -> TracedMask {
-        TracedMask(record(Node::Not(self.0)))
+        TracedMask::from_record(record(Node::Not(self.node), &[self.trace]))
     }
 }
 
 impl Traced {
+    fn from_record((node, trace): (u32, u32)) -> Traced {
+        Traced { node, trace }
+    }
     fn unary(self, op: Unary) -> Traced {
-        Traced(record(Node::Unary(op, self.0)))
+        Traced::from_record(record(Node::Unary(op, self.node), &[self.trace]))
     }
     fn binary(self, op: Binary, rhs: Traced) -> Traced {
-        Traced(record(Node::Binary(op, self.0, rhs.0)))
+        Traced::from_record(record(
+            Node::Binary(op, self.node, rhs.node),
+            &[self.trace, rhs.trace],
+        ))
+    }
+}
+
+impl TracedMask {
+    fn from_record((node, trace): (u32, u32)) -> TracedMask {
+        TracedMask { node, trace }
     }
 }
 
@@ -425,7 +666,7 @@ impl Real for Traced {
     const DOUBLE: bool = false;
 
     fn c(value: f64) -> Self {
-        Traced(record(Node::Const((value as f32).to_bits())))
+        Traced::from_record(record(Node::Const((value as f32).to_bits()), &[]))
     }
     fn sqrt(self) -> Self {
         self.unary(Unary::Sqrt)
@@ -458,13 +699,22 @@ impl Real for Traced {
         self.unary(Unary::Floor)
     }
     fn lt(self, other: Self) -> TracedMask {
-        TracedMask(record(Node::Less(self.0, other.0)))
+        TracedMask::from_record(record(
+            Node::Less(self.node, other.node),
+            &[self.trace, other.trace],
+        ))
     }
     fn le(self, other: Self) -> TracedMask {
-        TracedMask(record(Node::LessEqual(self.0, other.0)))
+        TracedMask::from_record(record(
+            Node::LessEqual(self.node, other.node),
+            &[self.trace, other.trace],
+        ))
     }
     fn select(mask: TracedMask, on_true: Self, on_false: Self) -> Self {
-        Traced(record(Node::Select(mask.0, on_true.0, on_false.0)))
+        Traced::from_record(record(
+            Node::Select(mask.node, on_true.node, on_false.node),
+            &[mask.trace, on_true.trace, on_false.trace],
+        ))
     }
 }
 
@@ -489,6 +739,91 @@ mod tests {
     fn common_subexpressions_are_shared() {
         let g = trace(1, |a| vec![a[0] * a[0] + a[0] * a[0]]);
         assert_eq!(g.count_binary(Binary::Mul), 1);
+    }
+
+    #[test]
+    fn a_panicking_trace_leaves_the_thread_able_to_trace() {
+        let caught = std::panic::catch_unwind(|| {
+            trace(1, |a| {
+                let _ = a[0] * a[0];
+                panic!("inside the traced closure")
+            })
+        });
+        assert!(caught.is_err());
+        let g = trace(1, |a| vec![a[0] + a[0]]);
+        assert_eq!(g.count_binary(Binary::Add), 1);
+        assert_eq!(g.eval_f32(&[1.5]), vec![3.0]);
+    }
+
+    #[test]
+    fn traced_values_outside_their_trace_panic_with_a_message() {
+        let mut escaped = None;
+        let _ = trace(1, |a| {
+            escaped = Some(a[0]);
+            vec![a[0]]
+        });
+        let x = escaped.expect("captured");
+        let text = |payload: Box<dyn std::any::Any + Send>| {
+            payload
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default()
+        };
+        let outside = text(std::panic::catch_unwind(move || x + x).unwrap_err());
+        assert!(
+            outside.contains("outside hairmath::real::trace"),
+            "{outside}"
+        );
+        let inside = std::panic::catch_unwind(move || trace(1, |a| vec![a[0] + x]));
+        let inside = text(inside.unwrap_err());
+        assert!(inside.contains("another trace"), "{inside}");
+        // The failed trace ended cleanly too.
+        assert_eq!(trace(0, |_| vec![Traced::c(2.0)]).eval_f32(&[]), vec![2.0]);
+    }
+
+    #[test]
+    fn named_arguments_print_as_struct_fields_and_vectors() {
+        let uniforms = ArgType::Struct(StructType {
+            name: "Material".into(),
+            fields: vec![
+                ("eta".into(), ArgType::Scalar),
+                ("sigma_a".into(), ArgType::Vec3),
+            ],
+        });
+        let signature = Signature {
+            parameters: vec![
+                Parameter {
+                    name: "m".into(),
+                    ty: uniforms,
+                },
+                Parameter {
+                    name: "wi".into(),
+                    ty: ArgType::Vec3,
+                },
+            ],
+            result: ResultType::Vec3,
+        };
+        assert_eq!(signature.input_count(), 7);
+        let g = trace_with(signature, |x| vec![x[0] * x[4], x[2], x[5] + x[6]]);
+        let wgsl = g.to_wgsl("shade");
+        assert!(
+            wgsl.starts_with("struct Material {\n    eta: f32,\n    sigma_a: vec3<f32>,\n}"),
+            "{wgsl}"
+        );
+        assert!(
+            wgsl.contains("fn shade(m: Material, wi: vec3<f32>) -> vec3<f32> {"),
+            "{wgsl}"
+        );
+        assert!(
+            wgsl.contains("m.eta * wi.x") && wgsl.contains("m.sigma_a.y"),
+            "{wgsl}"
+        );
+        assert!(wgsl.contains("return vec3<f32>("), "{wgsl}");
+        assert_eq!(
+            g.eval_f32(&[2.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0]),
+            vec![8.0, 2.0, 11.0]
+        );
     }
 
     #[test]

@@ -1,9 +1,11 @@
-//! `hairmath eval`: evaluate a model on rows of a simple CSV read from stdin.
+//! `hairmath eval`: evaluate a registered model on rows of a simple CSV read from stdin.
 
+use crate::flags::{model_names, ModelFlags};
 use crate::CliError;
-use clap::{ArgGroup, Args, ValueEnum};
-use hairmath::absorption::{sigma_a_from_color, sigma_a_from_melanin, Rgb};
-use hairmath::bcsdf::{ChiangFarField, ChiangHair, ChiangParams, FarFieldRule};
+use clap::builder::PossibleValuesParser;
+use clap::Args;
+use hairmath::bcsdf::registry::model;
+use hairmath::bcsdf::{Bcsdf, Query};
 use hairmath::geometry::V3;
 use std::io::{self, BufRead, BufWriter, Write};
 
@@ -11,172 +13,42 @@ use std::io::{self, BufRead, BufWriter, Write};
 const UNIT_TOLERANCE: f64 = 1e-3;
 
 /// The columns the near-field models need, in the order the evaluation uses them; the
-/// far-field model needs all but the last (`h`).
+/// far-field models need all but the last (`h`).
 const REQUIRED: [&str; 7] = ["wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z", "h"];
-
-/// Default node count of `--model chiang-far`.
-const DEFAULT_NODES: usize = 64;
-
-/// Relative tolerance of `--model chiang-far --reference`.
-const REFERENCE_REL_TOL: f64 = 1e-9;
-
-/// The scattering models `eval` knows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Model {
-    /// Chiang et al. 2016 (pbrt-v4 `HairBxDF`), the near-field reference.
-    Chiang,
-    /// The far field of Chiang et al. 2016: S(wi, wo) averaged over h uniform in [-1, 1]
-    /// (no `h` column needed; one, if present, is passed through and ignored). Integrated
-    /// over h with a fixed Gauss-Legendre rule of --nodes nodes, or with the adaptive
-    /// reference integrator (--reference, relative tolerance 1e-9, about 0.2 ms per row).
-    ChiangFar,
-}
 
 /// Arguments of `hairmath eval`.
 #[derive(Args, Debug)]
-#[command(group(
-    ArgGroup::new("absorption")
-        .required(true)
-        .args(["sigma_a", "melanin", "color"])
-))]
 pub struct EvalArgs {
-    /// The scattering model.
-    #[arg(long, value_enum, default_value_t = Model::Chiang)]
-    model: Model,
-    /// Longitudinal roughness beta_m, in (0, 1].
-    #[arg(long, value_name = "B", allow_hyphen_values = true)]
-    beta_m: f64,
-    /// Azimuthal roughness beta_n, in (0, 1].
-    #[arg(long, value_name = "B", allow_hyphen_values = true)]
-    beta_n: f64,
-    /// Cuticle tilt alpha in degrees.
-    #[arg(
-        long,
-        value_name = "A",
-        default_value_t = 2.0,
-        allow_hyphen_values = true
-    )]
-    alpha_deg: f64,
-    /// Relative index of refraction eta, > 1.
-    #[arg(
-        long,
-        value_name = "E",
-        default_value_t = 1.55,
-        allow_hyphen_values = true
-    )]
-    eta: f64,
-    /// Absorption per unit fibre radius, linear RGB.
-    #[arg(long, value_name = "R,G,B", value_parser = parse_floats::<3>, allow_hyphen_values = true)]
-    sigma_a: Option<[f64; 3]>,
-    /// Eumelanin and pheomelanin concentrations (sigma_a = eu * [0.419, 0.697, 1.37] +
-    /// pheo * [0.187, 0.4, 1.05]).
-    #[arg(long, value_name = "EU,PHEO", value_parser = parse_floats::<2>, allow_hyphen_values = true)]
-    melanin: Option<[f64; 2]>,
-    /// Approximate colour of a multiply-scattering hair volume, linear RGB in (0, 1]
-    /// (inverted to sigma_a with beta_n, Chiang et al. 2016 section 4.2).
-    #[arg(long, value_name = "R,G,B", value_parser = parse_floats::<3>, allow_hyphen_values = true)]
-    color: Option<[f64; 3]>,
-    /// chiang-far only: node count (1..=512) of the fixed rule over h [default: 64].
-    #[arg(long, value_name = "N", conflicts_with = "reference")]
-    nodes: Option<usize>,
-    /// chiang-far only: integrate over h with the adaptive reference integrator (relative
-    /// tolerance 1e-9) instead of the fixed rule.
-    #[arg(long)]
-    reference: bool,
-}
-
-/// Parses exactly `N` comma-separated numbers (clap value parser).
-fn parse_floats<const N: usize>(text: &str) -> Result<[f64; N], String> {
-    let fields: Vec<&str> = text.split(',').map(str::trim).collect();
-    if fields.len() != N {
-        return Err(format!(
-            "expected {N} comma-separated numbers, found {}",
-            fields.len()
-        ));
-    }
-    let mut out = [0.0; N];
-    for (slot, field) in out.iter_mut().zip(&fields) {
-        *slot = field
-            .parse()
-            .map_err(|_| format!("{field:?} is not a number"))?;
-    }
-    Ok(out)
-}
-
-/// A model ready to evaluate (one variant per [`Model`] and integrator).
-enum Evaluator {
-    Chiang(ChiangHair<f64>),
-    ChiangFar(ChiangFarField<f64>),
-    ChiangFarReference(ChiangHair<f64>),
-}
-
-impl Evaluator {
-    /// The input columns this model needs, in the order of [`Evaluator::eval`]'s arguments.
-    fn columns(&self) -> &'static [&'static str] {
-        match self {
-            Evaluator::Chiang(_) => &REQUIRED,
-            Evaluator::ChiangFar(_) | Evaluator::ChiangFarReference(_) => &REQUIRED[..6],
-        }
-    }
-
-    /// `S(wi, wo, h)` per channel, no cosine factor (the far-field models ignore `h`).
-    fn eval(&self, wi: V3<f64>, wo: V3<f64>, h: f64) -> [f64; 3] {
-        match self {
-            Evaluator::Chiang(hair) => hair.eval(wi, wo, h),
-            Evaluator::ChiangFar(far) => far.eval(wi, wo),
-            Evaluator::ChiangFarReference(hair) => {
-                hair.far_field_reference(wi, wo, REFERENCE_REL_TOL).value
-            }
-        }
-    }
+    /// The scattering model (`hairmath::bcsdf::registry::MODELS`).
+    #[arg(long, default_value = "chiang", value_parser = PossibleValuesParser::new(model_names()))]
+    model: String,
+    /// The models' inputs.
+    #[command(flatten)]
+    flags: ModelFlags,
 }
 
 impl EvalArgs {
-    /// sigma_a from whichever of `--sigma-a`, `--melanin`, `--color` was given.
-    fn sigma_a(&self) -> Result<Rgb, CliError> {
-        let params = |e: hairmath::ParamError| CliError::Params(e.to_string());
-        match (self.sigma_a, self.melanin, self.color) {
-            (Some(s), _, _) => Ok(s),
-            (_, Some([eu, pheo]), _) => sigma_a_from_melanin(eu, pheo).map_err(params),
-            (_, _, Some(c)) => sigma_a_from_color(c, self.beta_n).map_err(params),
-            // clap's ArgGroup makes this unreachable; report it rather than panic.
-            _ => Err(CliError::Params(
-                "one of --sigma-a, --melanin, --color is required".into(),
-            )),
-        }
+    /// Validates the flags and builds the model.
+    fn model(&self) -> Result<Box<dyn Bcsdf<f64>>, CliError> {
+        let entry = model(&self.model).ok_or_else(|| CliError::UnknownModel(self.model.clone()))?;
+        let values = self.flags.values_for(entry)?;
+        Ok((entry.build)(&values)?)
     }
+}
 
-    /// Validates the parameters and builds the model.
-    fn evaluator(&self) -> Result<Evaluator, CliError> {
-        let sigma_a = self.sigma_a()?;
-        let params = ChiangParams::new(
-            self.beta_m,
-            self.beta_n,
-            self.alpha_deg.to_radians(),
-            self.eta,
-            sigma_a,
-        )
-        .map_err(|e| CliError::Params(e.to_string()))?;
-        let hair = ChiangHair::new(&params);
-        match self.model {
-            Model::Chiang if self.nodes.is_some() || self.reference => Err(CliError::Params(
-                "--nodes and --reference apply only to --model chiang-far".into(),
-            )),
-            Model::Chiang => Ok(Evaluator::Chiang(hair)),
-            Model::ChiangFar if self.reference => Ok(Evaluator::ChiangFarReference(hair)),
-            Model::ChiangFar => {
-                let rule = FarFieldRule::gauss_legendre(self.nodes.unwrap_or(DEFAULT_NODES))
-                    .map_err(|e| CliError::Params(e.to_string()))?;
-                Ok(Evaluator::ChiangFar(ChiangFarField::new(hair, &rule)))
-            }
-        }
+/// The input columns `model` needs, in the order of [`Query`]'s fields.
+fn columns(model: &dyn Bcsdf<f64>) -> &'static [&'static str] {
+    if model.uses_offset() {
+        &REQUIRED
+    } else {
+        &REQUIRED[..6]
     }
 }
 
 /// Runs `hairmath eval`: stdin to stdout, flushing what was written even on error.
 pub fn run(args: &EvalArgs) -> Result<(), CliError> {
-    let model = args.evaluator()?;
-    run_csv(|input, out| process(&model, input, out))
+    let model = args.model()?;
+    run_csv(|input, out| process(model.as_ref(), input, out))
 }
 
 /// Runs a CSV filter `process` from stdin to stdout, flushing what was written even when it
@@ -192,10 +64,13 @@ pub(crate) fn run_csv(
 }
 
 /// Reads the header and the rows from `input`, writes the extended CSV to `out`.
-fn process(model: &Evaluator, input: impl BufRead, out: &mut dyn Write) -> Result<(), CliError> {
-    filter_csv(input, out, model.columns(), "f_r,f_g,f_b", |fields| {
-        let row = parse_row(fields)?;
-        let [r, g, b] = model.eval(row.wi, row.wo, row.h);
+fn process(
+    model: &dyn Bcsdf<f64>,
+    input: impl BufRead,
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    filter_csv(input, out, columns(model), "f_r,f_g,f_b", |fields| {
+        let [r, g, b] = model.eval(&parse_row(fields)?);
         Ok(format!("{r},{g},{b}"))
     })
 }
@@ -246,13 +121,6 @@ struct Columns {
     index: Vec<usize>,
 }
 
-/// One validated input row: unit directions and the offset (0 when not read).
-struct Row {
-    wi: V3<f64>,
-    wo: V3<f64>,
-    h: f64,
-}
-
 impl Columns {
     /// Finds the columns `required` in `header`; names a missing or duplicated one.
     fn from_header(header: &str, required: &[&str]) -> Result<Self, String> {
@@ -295,8 +163,9 @@ impl Columns {
     }
 }
 
-/// Parses and validates the fields of [`REQUIRED`] (or of all but `h`) of one row.
-fn parse_row(fields: &[&str]) -> Result<Row, String> {
+/// Parses and validates the fields of [`REQUIRED`] (or of all but `h`, which is then 0) of one
+/// row.
+fn parse_row(fields: &[&str]) -> Result<Query<f64>, String> {
     let mut v = [0.0; REQUIRED.len()];
     for ((slot, field), name) in v.iter_mut().zip(fields).zip(REQUIRED) {
         *slot = parse_number(name, field)?;
@@ -307,7 +176,7 @@ fn parse_row(fields: &[&str]) -> Result<Row, String> {
     if !(-1.0..=1.0).contains(&h) {
         return Err(format!("h = {h} is outside [-1, 1]"));
     }
-    Ok(Row { wi, wo, h })
+    Ok(Query::new(wi, wo, h))
 }
 
 /// A finite number from the field of column `name`.
@@ -340,9 +209,11 @@ fn unit(name: &str, w: V3<f64>) -> Result<V3<f64>, String> {
 mod tests {
     use super::*;
 
-    fn model() -> Evaluator {
-        let p = ChiangParams::new(0.3, 0.3, 0.035, 1.55, [0.5, 0.8, 1.4]).unwrap();
-        Evaluator::Chiang(ChiangHair::new(&p))
+    use hairmath::bcsdf::ChiangHair;
+    use hairmath::params::HairParams;
+
+    fn model() -> ChiangHair<f64> {
+        ChiangHair::new(&HairParams::default())
     }
 
     fn run_on(input: &str) -> (String, Result<(), CliError>) {
@@ -374,12 +245,5 @@ mod tests {
             message.contains("line 1") && message.contains("wi_z"),
             "{message}"
         );
-    }
-
-    #[test]
-    fn value_parser_counts_fields() {
-        assert_eq!(parse_floats::<2>("1, -2").unwrap(), [1.0, -2.0]);
-        assert!(parse_floats::<3>("1,2").is_err());
-        assert!(parse_floats::<3>("1,x,2").is_err());
     }
 }

@@ -34,8 +34,8 @@ pub struct FitArgs {
 
 /// Runs every fit for the given settings.
 pub fn fits(eta: f64) -> Result<(FitSettings, FitOutput), CliError> {
-    let settings = FitSettings::new(eta).map_err(|e| CliError::Params(e.to_string()))?;
-    let output = all_fits(&settings).map_err(|e| CliError::Params(e.to_string()))?;
+    let settings = FitSettings::new(eta)?;
+    let output = all_fits(&settings)?;
     Ok((settings, output))
 }
 
@@ -112,13 +112,9 @@ fn json(records: &[ConstantFit]) -> String {
     serde_json::to_string_pretty(&rows).unwrap_or_else(|_| "[]".into())
 }
 
-fn params(e: impl std::fmt::Display) -> CliError {
-    CliError::Params(e.to_string())
-}
-
 /// The error tables behind the summary rows.
 fn details(out: &mut impl Write, settings: &FitSettings) -> Result<(), CliError> {
-    let absorption = absorption_report(settings).map_err(params)?;
+    let absorption = absorption_report(settings)?;
     writeln!(
         out,
         "\n## Absorption exponents: (e^(-k sigma_a) - E(sigma_a)/E(0)) / (E(sigma_a)/E(0))\n"
@@ -148,7 +144,7 @@ fn details(out: &mut impl Write, settings: &FitSettings) -> Result<(), CliError>
             )?;
         }
     }
-    let frostbite = frostbite_report(settings).map_err(params)?;
+    let frostbite = frostbite_report(settings)?;
     for offset in [&frostbite.tt_offset, &frostbite.trt_offset] {
         for (label, table) in [("published", &offset.published), ("refit", &offset.refit)] {
             attenuation_table(out, label, table)?;

@@ -4,11 +4,14 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
+use hairmath::absorption::Absorption;
 use hairmath::azimuthal::CausticParams;
 use hairmath::lut::{
     bake, lookup_error, write_png, write_raw, Baker, FarFieldN, GerardN, NguyenM, NguyenN, Table,
 };
+use hairmath::params::{AzimuthalRoughness, LobeShift, LobeWidth, MarschnerLobes, RefractiveIndex};
 
+use crate::flags::{parse_floats, parse_rgb};
 use crate::CliError;
 
 /// Which table to bake.
@@ -24,7 +27,7 @@ pub enum LutKind {
     FarField,
 }
 
-/// Arguments of `hairmath lut`.
+/// Arguments of `hairmath lut`. Flags shared with `hairmath eval` mean the same there.
 #[derive(Args, Debug)]
 pub struct LutArgs {
     /// The table to bake.
@@ -35,25 +38,29 @@ pub struct LutArgs {
     /// about 0.2 ms per sample.
     #[arg(long, value_delimiter = ',')]
     size: Vec<usize>,
-    /// Relative index of refraction.
+    /// Relative index of refraction eta, in (1, 3].
     #[arg(long, default_value_t = 1.55)]
     eta: f64,
-    /// Absorption per unit fibre radius, R,G,B (nguyen-n and far-field; gerard uses 0).
-    #[arg(long, value_delimiter = ',', default_value = "0.2,0.4,0.8")]
-    sigma_a: Vec<f64>,
-    /// R lobe width beta_R in radians (nguyen-m); beta_TT = beta_R/2, beta_TRT = 2 beta_R.
-    #[arg(long, default_value_t = 7.5f64.to_radians())]
-    beta_m: f64,
-    /// R lobe shift alpha_R in radians (nguyen-m); alpha_TT = -alpha_R/2, alpha_TRT = -3 alpha_R/2.
-    #[arg(long, default_value_t = (-5f64).to_radians(), allow_negative_numbers = true)]
-    alpha: f64,
-    /// beta_n range MIN,MAX of the far-field table's third axis.
-    #[arg(long, value_delimiter = ',', default_value = "0.2,0.8")]
-    beta_n: Vec<f64>,
-    /// Largest theta_d of the gerard table, radians.
-    #[arg(long, default_value_t = core::f64::consts::FRAC_PI_2)]
-    theta_d_max: f64,
-    /// Relative tolerance of the far-field reference integrals.
+    /// Absorption per unit fibre radius, linear RGB, or one value for all channels (nguyen-n
+    /// and far-field; gerard uses 0).
+    #[arg(long, value_name = "R,G,B", value_parser = parse_rgb, default_value = "0.2,0.4,0.8")]
+    sigma_a: [f64; 3],
+    /// Width beta_R of Marschner's R lobe in degrees, in (0, 45] (nguyen-m); beta_TT =
+    /// beta_R/2, beta_TRT = 2 beta_R.
+    #[arg(long, value_name = "DEGREES", default_value_t = 7.5)]
+    beta_r_deg: f64,
+    /// Shift alpha_R of Marschner's R lobe in degrees, |alpha_R| <= 22.5 (nguyen-m); alpha_TT
+    /// = -alpha_R/2, alpha_TRT = -3 alpha_R/2.
+    #[arg(long, value_name = "DEGREES", default_value_t = -5.0, allow_negative_numbers = true)]
+    alpha_r_deg: f64,
+    /// The range MIN,MAX of azimuthal roughness beta_n (each in (0, 1]) of the far-field
+    /// table's third axis.
+    #[arg(long, value_name = "MIN,MAX", value_parser = parse_floats::<2>, default_value = "0.2,0.8")]
+    beta_n_range: [f64; 2],
+    /// Largest theta_d of the gerard table, degrees, in (0, 90].
+    #[arg(long, value_name = "DEGREES", default_value_t = 90.0)]
+    theta_d_max_deg: f64,
+    /// Relative tolerance of the far-field reference integrals, in [1e-12, 1e-2].
     #[arg(long, default_value_t = 1e-6)]
     rel_tol: f64,
     /// Leave out Marschner's TRT caustic treatment (nguyen-n, gerard).
@@ -67,71 +74,59 @@ pub struct LutArgs {
     out: PathBuf,
 }
 
-fn params(e: impl std::fmt::Display) -> CliError {
-    CliError::Params(e.to_string())
-}
-
-fn lut_error(e: hairmath::lut::LutError) -> CliError {
-    match e {
-        hairmath::lut::LutError::Io { source, .. } => CliError::Io(source),
-        other => params(other),
-    }
-}
-
-fn rgb(values: &[f64]) -> Result<[f64; 3], CliError> {
-    match values {
-        [r, g, b] => Ok([*r, *g, *b]),
-        [v] => Ok([*v; 3]),
-        _ => Err(CliError::Params(format!(
-            "--sigma-a takes 1 or 3 values, {} given",
-            values.len()
-        ))),
-    }
+/// The baker the flags describe, every parameter validated by its type.
+fn baker(args: &LutArgs) -> Result<Box<dyn Baker>, CliError> {
+    let caustic = (!args.no_caustic).then(CausticParams::default);
+    let eta = RefractiveIndex::new(args.eta)?;
+    Ok(match args.kind {
+        LutKind::NguyenM => Box::new(NguyenM::new(MarschnerLobes {
+            alpha_r: LobeShift::new(args.alpha_r_deg.to_radians())?,
+            beta_r: LobeWidth::new(args.beta_r_deg.to_radians())?,
+        })),
+        LutKind::NguyenN => Box::new(NguyenN::new(eta, Absorption::new(args.sigma_a)?, caustic)),
+        LutKind::Gerard => Box::new(GerardN::new(
+            eta,
+            args.theta_d_max_deg.to_radians(),
+            caustic,
+        )?),
+        LutKind::FarField => {
+            let [lo, hi] = args.beta_n_range;
+            Box::new(FarFieldN::new(
+                eta,
+                Absorption::new(args.sigma_a)?,
+                AzimuthalRoughness::new(lo)?,
+                AzimuthalRoughness::new(hi)?,
+                args.rel_tol,
+            )?)
+        }
+    })
 }
 
 /// Bakes, writes and reports.
 pub fn run(args: &LutArgs) -> Result<(), CliError> {
-    let caustic = (!args.no_caustic).then(CausticParams::default);
-    let baker: Box<dyn Baker> = match args.kind {
-        LutKind::NguyenM => Box::new(NguyenM::new(args.beta_m, args.alpha).map_err(params)?),
-        LutKind::NguyenN => {
-            Box::new(NguyenN::new(args.eta, rgb(&args.sigma_a)?, caustic).map_err(params)?)
-        }
-        LutKind::Gerard => {
-            Box::new(GerardN::new(args.eta, args.theta_d_max, caustic).map_err(params)?)
-        }
-        LutKind::FarField => {
-            let [lo, hi] = args.beta_n[..] else {
-                return Err(CliError::Params("--beta-n takes MIN,MAX".to_string()));
-            };
-            Box::new(
-                FarFieldN::new(args.eta, rgb(&args.sigma_a)?, lo, hi, args.rel_tol)
-                    .map_err(params)?,
-            )
-        }
-    };
+    let baker = baker(args)?;
     let sizes = if args.size.is_empty() {
         baker.default_sizes()
     } else {
         args.size.clone()
     };
-    let table = bake(baker.as_ref(), &sizes).map_err(lut_error)?;
+    let table = bake(baker.as_ref(), &sizes)?;
     std::fs::create_dir_all(&args.out)?;
     let stem = baker.kind().replace('-', "_");
     let dims: Vec<String> = sizes.iter().map(usize::to_string).collect();
     let name = format!("{stem}_{}", dims.join("x"));
     let raw = args.out.join(format!("{name}.f32"));
-    let json = write_raw(&table, &raw).map_err(lut_error)?;
+    let json = write_raw(&table, &raw)?;
     println!("wrote {}", raw.display());
     println!("wrote {}", json.display());
     for (suffix, channels) in png_layout(args.kind) {
         let path = args.out.join(format!("{name}{suffix}.png"));
-        write_png(&table, channels, &path).map_err(lut_error)?;
+        write_png(&table, channels, &path)?;
         println!("wrote {}", path.display());
     }
     print_scales(&table);
     if args.error_points > 0 {
-        let s = lookup_error(baker.as_ref(), &table, args.error_points).map_err(lut_error)?;
+        let s = lookup_error(baker.as_ref(), &table, args.error_points)?;
         println!(
             "lookup vs direct at {} off-grid points: max abs {:.3e}, mean abs {:.3e}, \
              max rel {:.3e} (channel {}), mean rel {:.3e} (relative to each channel's maximum)",

@@ -14,6 +14,7 @@
 
 mod eval;
 mod fit;
+mod flags;
 mod lut;
 mod report;
 mod sh;
@@ -104,8 +105,29 @@ pub enum CliError {
         /// What is wrong with it.
         message: String,
     },
-    /// Invalid model parameters.
-    Params(String),
+    /// Invalid parameters.
+    Params(hairmath::ParamError),
+    /// A lookup table could not be built or written.
+    Lut(hairmath::lut::LutError),
+    /// A fit failed.
+    Fit(hairmath::fit::FitError),
+    /// `--model` names no registered model (clap's value check makes this unreachable from
+    /// the command line).
+    UnknownModel(String),
+    /// The chosen model needs a flag that was not given.
+    MissingFlag {
+        /// The model.
+        model: &'static str,
+        /// The flag (or the alternatives).
+        flag: String,
+    },
+    /// Flags given that the chosen model does not take.
+    FlagsNotForModel {
+        /// The flags, with every other flag of exactly the same models.
+        flags: Vec<String>,
+        /// The models that take them.
+        models: Vec<String>,
+    },
     /// Reading or writing failed.
     Io(io::Error),
 }
@@ -124,7 +146,22 @@ impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             CliError::Input { line, message } => write!(f, "line {line}: {message}"),
-            CliError::Params(message) => write!(f, "invalid parameters: {message}"),
+            CliError::Params(e) => write!(f, "invalid parameters: {e}"),
+            CliError::Lut(e) => write!(f, "lookup table: {e}"),
+            CliError::Fit(e) => write!(f, "{e}"),
+            CliError::UnknownModel(name) => write!(f, "no model is called {name:?}"),
+            CliError::MissingFlag { model, flag } => {
+                write!(f, "--model {model} requires {flag}")
+            }
+            CliError::FlagsNotForModel { flags, models } => {
+                let verb = if flags.len() == 1 { "applies" } else { "apply" };
+                write!(
+                    f,
+                    "{} {verb} only to --model {}",
+                    flags.join(" and "),
+                    models.join(", ")
+                )
+            }
             CliError::Io(e) => write!(f, "I/O error: {e}"),
         }
     }
@@ -133,6 +170,30 @@ impl fmt::Display for CliError {
 impl From<io::Error> for CliError {
     fn from(e: io::Error) -> Self {
         CliError::Io(e)
+    }
+}
+
+impl From<hairmath::ParamError> for CliError {
+    fn from(e: hairmath::ParamError) -> Self {
+        CliError::Params(e)
+    }
+}
+
+impl From<hairmath::lut::LutError> for CliError {
+    fn from(e: hairmath::lut::LutError) -> Self {
+        match e {
+            hairmath::lut::LutError::Param(p) => CliError::Params(p),
+            other => CliError::Lut(other),
+        }
+    }
+}
+
+impl From<hairmath::fit::FitError> for CliError {
+    fn from(e: hairmath::fit::FitError) -> Self {
+        match e {
+            hairmath::fit::FitError::Param(p) => CliError::Params(p),
+            other => CliError::Fit(other),
+        }
     }
 }
 

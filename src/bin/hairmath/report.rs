@@ -5,9 +5,12 @@
 
 use crate::CliError;
 use clap::Args;
-use hairmath::absorption::sigma_a_from_melanin;
-use hairmath::bcsdf::{ChiangFarField, ChiangHair, ChiangParams, FarFieldRule};
+use hairmath::absorption::Absorption;
+use hairmath::bcsdf::{Bcsdf, ChiangFarField, ChiangHair, FarFieldRule, Query};
 use hairmath::geometry::{local_direction, V3};
+use hairmath::params::{
+    AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
+};
 use hairmath::quadrature::{gauss_legendre, SphereRule};
 use hairmath::real::Real;
 use std::hint::black_box;
@@ -143,9 +146,19 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
 }
 
 /// The Chiang model with the report's roughness, tilt and index and the given absorption.
-fn hair(beta: f64, sigma_a: [f64; 3]) -> Result<ChiangParams, CliError> {
-    ChiangParams::new(beta, beta, ALPHA_DEG.to_radians(), ETA, sigma_a)
-        .map_err(|e| CliError::Params(e.to_string()))
+fn hair(beta: f64, sigma_a: [f64; 3]) -> Result<HairParams, CliError> {
+    hair_with(beta, beta, sigma_a)
+}
+
+/// The hair of the report's tilt and index with the given roughnesses and absorption.
+fn hair_with(beta_m: f64, beta_n: f64, sigma_a: [f64; 3]) -> Result<HairParams, CliError> {
+    Ok(HairParams {
+        beta_m: LongitudinalRoughness::new(beta_m)?,
+        beta_n: AzimuthalRoughness::new(beta_n)?,
+        alpha: CuticleTilt::from_degrees(ALPHA_DEG)?,
+        eta: RefractiveIndex::new(ETA)?,
+        sigma_a: Absorption::new(sigma_a)?,
+    })
 }
 
 /// A sphere rule of the given size.
@@ -176,7 +189,14 @@ fn lobe_energies(
     h_rule: &[(f64, f64)],
     wo: V3<f64>,
 ) -> [[f64; 3]; 4] {
-    energies(|wi, h| hair.eval_lobes(wi, wo, h), sphere, h_rule)
+    energies(
+        |wi, h| {
+            let l = hair.eval_lobes(&Query::new(wi, wo, h));
+            [l[0], l[1], l[2], l[3]]
+        },
+        sphere,
+        h_rule,
+    )
 }
 
 /// The integral over the sphere of `lobes(wi, h)` (per lobe and channel), averaged over h with
@@ -282,7 +302,7 @@ fn lobe_table(out: &mut impl Write, s: &Settings) -> Result<Vec<[[f64; 3]; 4]>, 
 
 /// sigma_a of the given melanin concentrations.
 fn hair_sigma_a(eu: f64, pheo: f64) -> Result<[f64; 3], CliError> {
-    sigma_a_from_melanin(eu, pheo).map_err(|e| CliError::Params(e.to_string()))
+    Ok(Absorption::from_melanin(eu, pheo)?.rgb())
 }
 
 /// The white-furnace check: with sigma_a = 0 the integral of S over the sphere is 1.
@@ -293,7 +313,7 @@ fn furnace(out: &mut impl Write, s: &Settings) -> Result<(), CliError> {
         let model = ChiangHair::<f64>::new(&hair(beta, [0.0; 3])?);
         let rule = if beta < 0.2 { &sharp } else { &smooth };
         let worst = worst_furnace(rule, s.furnace_theta_o_deg, s.furnace_h, |wi, wo, h| {
-            model.eval(wi, wo, h)[1]
+            model.eval(&Query::new(wi, wo, h))[1]
         });
         cells.push(format!("beta {beta}: {worst:+.1e}"));
     }
@@ -372,7 +392,7 @@ impl SplitMix {
 
 /// Mean wall-clock nanoseconds of `eval` in precision `R` over `calls` calls cycling through
 /// 1024 deterministic inputs.
-fn ns_per_eval<R: Real>(params: &ChiangParams, calls: usize) -> f64 {
+fn ns_per_eval<R: Real>(params: &HairParams, calls: usize) -> f64 {
     let model = ChiangHair::<R>::new(params);
     let mut rng = SplitMix(0x5eed);
     let to_r = |w: V3<f64>| V3::<R>::c(w.x, w.y, w.z);
@@ -385,18 +405,16 @@ fn ns_per_eval<R: Real>(params: &ChiangParams, calls: usize) -> f64 {
     let start = Instant::now();
     for k in 0..calls {
         let (wi, wo, h) = inputs[k % inputs.len()];
-        black_box(model.eval(black_box(wi), black_box(wo), black_box(h)));
+        black_box(model.eval(&Query::new(black_box(wi), black_box(wo), black_box(h))));
     }
     start.elapsed().as_nanos() as f64 / calls.max(1) as f64
 }
 
 /// The far-field model of the report's tilt and index with `FAR_NODES` nodes.
 fn far_model(beta_n: f64, sigma_a: [f64; 3]) -> Result<ChiangFarField<f64>, CliError> {
-    let params = ChiangParams::new(BETA, beta_n, ALPHA_DEG.to_radians(), ETA, sigma_a)
-        .map_err(|e| CliError::Params(e.to_string()))?;
-    let rule =
-        FarFieldRule::gauss_legendre(FAR_NODES).map_err(|e| CliError::Params(e.to_string()))?;
-    Ok(ChiangFarField::new(ChiangHair::new(&params), &rule))
+    let params = hair_with(BETA, beta_n, sigma_a)?;
+    let rule = FarFieldRule::gauss_legendre(FAR_NODES)?;
+    Ok(ChiangFarField::new(&params, &rule))
 }
 
 /// The far-field lobe-energy table, one row per hair colour, with the largest difference
@@ -425,7 +443,10 @@ fn far_lobe_table(
     for ((name, eu, pheo), near) in HAIRS.iter().zip(near) {
         let model = far_model(BETA, hair_sigma_a(*eu, *pheo)?)?;
         let energy = energies(
-            |wi, _| model.eval_lobes(wi, wo),
+            |wi, _| {
+                let l = model.eval_lobes(&Query::far(wi, wo));
+                [l[0], l[1], l[2], l[3]]
+            },
             &sphere_rule,
             &[(0.0, 1.0)],
         );
@@ -448,12 +469,11 @@ fn far_furnace(out: &mut impl Write, s: &Settings) -> Result<(), CliError> {
     let mut cells = Vec::new();
     for beta in FURNACE_BETAS {
         let params = hair(beta, [0.0; 3])?;
-        let rule =
-            FarFieldRule::gauss_legendre(FAR_NODES).map_err(|e| CliError::Params(e.to_string()))?;
-        let model = ChiangFarField::new(ChiangHair::new(&params), &rule);
+        let rule = FarFieldRule::gauss_legendre(FAR_NODES)?;
+        let model = ChiangFarField::<f64>::new(&params, &rule);
         let sphere_rule = if beta < 0.2 { &sharp } else { &smooth };
         let worst = worst_furnace(sphere_rule, s.furnace_theta_o_deg, &[0.0], |wi, wo, _| {
-            model.eval(wi, wo)[1]
+            model.eval(&Query::far(wi, wo))[1]
         });
         cells.push(format!("beta {beta}: {worst:+.1e}"));
     }
@@ -544,12 +564,12 @@ fn error_stats(
 
 /// The fixed rule's `N_p A_p` with `n` nodes at every grid point.
 fn fast_values(
-    hair: ChiangHair<f64>,
+    params: &HairParams,
     n: usize,
     grid: &[GridPoint],
 ) -> Result<Vec<Azimuthal>, CliError> {
-    let rule = FarFieldRule::gauss_legendre(n).map_err(|e| CliError::Params(e.to_string()))?;
-    let far = ChiangFarField::new(hair, &rule);
+    let rule = FarFieldRule::gauss_legendre(n)?;
+    let far = ChiangFarField::<f64>::new(params, &rule);
     Ok(grid
         .iter()
         .map(|&(s, c, phi)| far.azimuthal(s, c, phi).0)
@@ -559,21 +579,14 @@ fn fast_values(
 /// One row of the integrator table: for `beta_n`, the reference's cost and refinement and the
 /// fixed rule's (max, mean) error for each node count.
 fn integrator_row(beta_n: f64, grid: &[GridPoint], s: &Settings) -> Result<String, CliError> {
-    let params = ChiangParams::new(
-        BETA,
-        beta_n,
-        ALPHA_DEG.to_radians(),
-        ETA,
-        INTEGRATOR_SIGMA_A,
-    )
-    .map_err(|e| CliError::Params(e.to_string()))?;
+    let params = hair_with(BETA, beta_n, INTEGRATOR_SIGMA_A)?;
     let hair = ChiangHair::<f64>::new(&params);
     let (reference, us) = reference_values(&hair, grid, REFERENCE_TOL);
     let peak = peaks(&reference, s.integrator_phis);
     let refinement = refinement(&hair, grid, &reference, &peak, s.refine_every);
     let mut cells = vec![format!("{beta_n}"), format!("{us:.0}"), refinement];
     for n in INTEGRATOR_NODES {
-        let fast = fast_values(hair, n, grid)?;
+        let fast = fast_values(&params, n, grid)?;
         let (worst, mean) = error_stats(fast.into_iter().enumerate(), &reference, &peak);
         cells.push(format!("{worst:.1e} / {mean:.1e}"));
     }
@@ -599,10 +612,9 @@ fn refinement(
 /// Mean wall-clock nanoseconds of one fixed-rule `N_p` evaluation (`ChiangFarField::azimuthal`,
 /// all lobes and channels) with `n` nodes, over about `node_evals / n` calls cycling over `grid`.
 fn ns_per_azimuthal(n: usize, grid: &[GridPoint], node_evals: usize) -> Result<f64, CliError> {
-    let params = ChiangParams::new(BETA, BETA, ALPHA_DEG.to_radians(), ETA, INTEGRATOR_SIGMA_A)
-        .map_err(|e| CliError::Params(e.to_string()))?;
-    let rule = FarFieldRule::gauss_legendre(n).map_err(|e| CliError::Params(e.to_string()))?;
-    let far = ChiangFarField::new(ChiangHair::<f64>::new(&params), &rule);
+    let params = hair_with(BETA, BETA, INTEGRATOR_SIGMA_A)?;
+    let rule = FarFieldRule::gauss_legendre(n)?;
+    let far = ChiangFarField::<f64>::new(&params, &rule);
     let calls = (node_evals / n).max(grid.len()).max(1);
     let start = Instant::now();
     for k in 0..calls {

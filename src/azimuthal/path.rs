@@ -1,0 +1,109 @@
+//! The path of a ray through the fibre: refraction by an inclined ray (Snell's law along the
+//! axis, Bravais' index in the normal plane), the entry and exit angles, the length of each
+//! internal segment and the entry Fresnel reflectance. Every model that needs the geometry of
+//! a path (the reference BCSDF, the attenuations of the fits and the real-time models) takes it
+//! from here.
+
+use super::attenuation::{attenuations_from_fresnel, LOBES};
+use crate::absorption::{segment_length, PathLength};
+use crate::fresnel::fresnel_from_outside;
+use crate::real::{safe_sqrt, Real};
+
+/// Refraction into a fibre of relative index `eta` of a ray inclined at theta to its normal
+/// plane, for any offset: the quantities that do not depend on h.
+///
+/// With `sin theta_t = sin theta / eta` (Snell's law along the axis), Bravais' index
+/// `eta' = sqrt(eta^2 - sin^2 theta) / cos theta = eta cos theta_t / cos theta` (Marschner 2003,
+/// appendix B) gives the in-plane refraction `sin gamma_t = h / eta' = h cos theta / (eta
+/// cos theta_t)`, which is 0 (not 0/0) for grazing rays, cos theta = 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Refraction<R> {
+    /// cos theta >= 0 of the ray.
+    pub cos_theta: R,
+    /// cos theta_t of the refracted ray, at least sqrt(1 - 1/eta^2) > 0 for eta > 1.
+    pub cos_theta_t: R,
+    /// 1 / cos theta_t.
+    pub inv_cos_theta_t: R,
+    /// The relative index.
+    pub eta: R,
+    /// 1 / eta.
+    pub inv_eta: R,
+}
+
+/// The path through the fibre of the ray entering at one offset h (see [`Refraction::path`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FibrePath<R> {
+    /// The angle of incidence in the normal plane, gamma_o = asin h.
+    pub gamma_o: R,
+    /// The refracted angle in the normal plane, gamma_t = asin(h / eta').
+    pub gamma_t: R,
+    /// The length of one internal segment in fibre radii (see [`segment_length`]).
+    pub segment_length: R,
+    /// The Fresnel reflectance at the entry point, at the true angle of incidence
+    /// cos = cos(theta) cos(gamma_o).
+    pub fresnel: R,
+}
+
+impl<R: Real> Refraction<R> {
+    /// Refraction of the ray with inclination sine `sin_theta` and cosine `cos_theta >= 0` into
+    /// a fibre of index `eta > 1`, given `inv_eta = 1 / eta` (models precompute it).
+    pub fn new(sin_theta: R, cos_theta: R, eta: R, inv_eta: R) -> Self {
+        let sin_t = sin_theta * inv_eta;
+        let cos_theta_t = safe_sqrt(R::c(1.0) - sin_t * sin_t);
+        Refraction {
+            cos_theta,
+            cos_theta_t,
+            inv_cos_theta_t: R::c(1.0) / cos_theta_t,
+            eta,
+            inv_eta,
+        }
+    }
+
+    /// sin(gamma_t) of the ray entering at offset h: `h cos theta / (eta cos theta_t)`.
+    pub fn sin_gamma_t(&self, h: R) -> R {
+        h * self.cos_theta * self.inv_eta * self.inv_cos_theta_t
+    }
+
+    /// The path of the ray entering at offset `h` (clamped to [-1, 1]), with internal segments
+    /// of the length model `length`. The asines are written with the cosines the path needs
+    /// anyway, `gamma = atan2(sin, cos)` ([`crate::real::safe_asin`] computes them the same
+    /// way).
+    pub fn path(&self, h: R, length: PathLength) -> FibrePath<R> {
+        let one = R::c(1.0);
+        let h = h.clamp(-one, one);
+        let sin_gamma_t = self.sin_gamma_t(h);
+        let cos_gamma_t = safe_sqrt(one - sin_gamma_t * sin_gamma_t);
+        let (cos_gamma_o, fresnel) = entry(self.cos_theta, h, self.eta, self.inv_eta);
+        FibrePath {
+            gamma_o: h.atan2(cos_gamma_o),
+            gamma_t: sin_gamma_t.atan2(cos_gamma_t),
+            segment_length: segment_length(cos_gamma_t, self.inv_cos_theta_t, length),
+            fresnel,
+        }
+    }
+}
+
+impl<R: Real> FibrePath<R> {
+    /// The transmittance `exp(-sigma_a L)` of one internal segment for absorption `sigma_a`
+    /// per unit radius.
+    pub fn transmittance(&self, sigma_a: R) -> R {
+        (-sigma_a * self.segment_length).exp()
+    }
+
+    /// The attenuations `[A_0, A_1, A_2, A_3+]` of the path for absorption `sigma_a` per unit
+    /// radius ([`attenuations_from_fresnel`] of the entry reflectance and the transmittance).
+    pub fn attenuations(&self, sigma_a: R) -> [R; LOBES] {
+        attenuations_from_fresnel(self.fresnel, self.transmittance(sigma_a))
+    }
+}
+
+/// cos(gamma_o) and the Fresnel reflectance at the entry point of the ray inclined at theta
+/// (cosine `cos_theta`) entering at offset `h` in [-1, 1]: the true angle of incidence has
+/// cosine `cos(theta) cos(gamma_o)`, `cos gamma_o = sqrt(1 - h^2)`.
+pub(super) fn entry<R: Real>(cos_theta: R, h: R, eta: R, inv_eta: R) -> (R, R) {
+    let cos_gamma_o = safe_sqrt(R::c(1.0) - h * h);
+    (
+        cos_gamma_o,
+        fresnel_from_outside(cos_theta * cos_gamma_o, eta, inv_eta),
+    )
+}
