@@ -2,9 +2,12 @@
 //! references: energy conservation by deterministic quadrature, the sampler against the pdf by a
 //! chi-square test, f32 against f64, and Mitsuba 3's implementation on recorded data.
 
-use hairmath::absorption::sigma_a_from_melanin;
-use hairmath::bcsdf::{ChiangHair, ChiangParams};
+use hairmath::absorption::Absorption;
+use hairmath::bcsdf::{Bcsdf, ChiangHair, Query, RandomNumbers, SampledBcsdf};
 use hairmath::geometry::{local_direction, V3};
+use hairmath::params::{
+    AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
+};
 use hairmath::quadrature::{gauss_legendre, SphereRule};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
@@ -12,8 +15,40 @@ use statrs::distribution::{ChiSquared, ContinuousCDF};
 
 const ALPHA: f64 = 2.0 * std::f64::consts::PI / 180.0;
 
-fn hair(beta_m: f64, beta_n: f64, sigma_a: [f64; 3]) -> ChiangParams {
-    ChiangParams::new(beta_m, beta_n, ALPHA, 1.55, sigma_a).unwrap()
+/// The parameters by value, validated (a test of an invalid value calls this and unwraps the
+/// error instead).
+fn try_params(
+    beta_m: f64,
+    beta_n: f64,
+    alpha: f64,
+    eta: f64,
+    sigma_a: [f64; 3],
+) -> Result<HairParams, hairmath::ParamError> {
+    Ok(HairParams {
+        beta_m: LongitudinalRoughness::new(beta_m)?,
+        beta_n: AzimuthalRoughness::new(beta_n)?,
+        alpha: CuticleTilt::new(alpha)?,
+        eta: RefractiveIndex::new(eta)?,
+        sigma_a: Absorption::new(sigma_a)?,
+    })
+}
+
+fn hair(beta_m: f64, beta_n: f64, sigma_a: [f64; 3]) -> HairParams {
+    try_params(beta_m, beta_n, ALPHA, 1.55, sigma_a).unwrap()
+}
+
+fn melanin(eu: f64) -> [f64; 3] {
+    Absorption::from_melanin(eu, 0.0).unwrap().rgb()
+}
+
+/// The uniform numbers of the old positional sampling arguments `(u, uc)`.
+fn numbers<R: hairmath::real::Real>(u: [R; 2], uc: R) -> RandomNumbers<R> {
+    RandomNumbers {
+        lobe: uc,
+        longitudinal: u[0],
+        cone: u[1],
+        offset: R::c(0.0),
+    }
 }
 
 fn dir(theta_deg: f64, phi: f64) -> V3<f64> {
@@ -45,7 +80,7 @@ fn white_furnace_is_one_for_all_roughnesses() {
         for &bn in &betas {
             let model = ChiangHair::<f64>::new(&hair(bm, bn, [0.0; 3]));
             for (wo, h) in configurations() {
-                let albedo = rule.integrate(|wi| model.eval(wi, wo, h)[1]);
+                let albedo = rule.integrate(|wi| model.eval(&Query::new(wi, wo, h))[1]);
                 worst = worst.max((albedo - 1.0).abs());
                 assert!(
                     (albedo - 1.0).abs() < 1e-3,
@@ -76,7 +111,7 @@ fn lossless_sample_weights_are_one() {
                 [rng.random::<f64>(), rng.random::<f64>()],
                 rng.random::<f64>(),
             );
-            let s = m64.sample(wo, h, u, uc);
+            let s = m64.sample(wo, h, numbers(u, uc));
             assert!(s.pdf > 0.0, "{s:?}");
             for v in s.value {
                 assert!(
@@ -86,7 +121,7 @@ fn lossless_sample_weights_are_one() {
                 );
             }
             let wo32 = V3::new(wo.x as f32, wo.y as f32, wo.z as f32);
-            let s = m32.sample(wo32, h as f32, u.map(|x| x as f32), uc as f32);
+            let s = m32.sample(wo32, h as f32, numbers(u.map(|x| x as f32), uc as f32));
             assert!(s.pdf > 0.0, "{s:?}");
             for v in s.value {
                 assert!(
@@ -103,7 +138,7 @@ fn lossless_sample_weights_are_one() {
 /// (32 bins in sin(theta_i), equal solid angle, by 64 in phi_i; 8 x 8 Gauss-Legendre per bin).
 /// Bins with fewer than 5 expected samples are pooled. Significance 1e-3 per configuration.
 fn chi_square(
-    params: ChiangParams,
+    params: HairParams,
     wo: V3<f64>,
     h: f64,
     samples: usize,
@@ -116,7 +151,7 @@ fn chi_square(
     let mut observed = vec![0.0; NU * NPHI];
     let mut rng = Pcg64::seed_from_u64(seed);
     for _ in 0..samples {
-        let s = model.sample(wo, h, [rng.random(), rng.random()], rng.random());
+        let s = model.sample(wo, h, numbers([rng.random(), rng.random()], rng.random()));
         let u = ((s.wi.x + 1.0) * 0.5 * NU as f64).clamp(0.0, NU as f64 - 1.0) as usize;
         let phi = s.wi.z.atan2(s.wi.y);
         let j = ((phi + pi) / (2.0 * pi) * NPHI as f64).clamp(0.0, NPHI as f64 - 1.0) as usize;
@@ -137,7 +172,7 @@ fn chi_square(
                 let c = (1.0 - s * s).max(0.0).sqrt();
                 for &(y, wy) in &rule {
                     let wi = local_direction(s, c, p0 + dp * 0.5 * (y + 1.0));
-                    sum += wx * wy * model.pdf(wi, wo, h);
+                    sum += wx * wy * model.pdf(&Query::new(wi, wo, h));
                 }
             }
             expected[iu * NPHI + jp] = sum * 0.25 * du * dp * samples as f64;
@@ -170,22 +205,10 @@ fn chi_square(
 #[test]
 fn sampler_matches_pdf_by_chi_square() {
     let cases = [
-        (
-            hair(0.3, 0.3, sigma_a_from_melanin(1.3, 0.0).unwrap()),
-            dir(20.0, 0.3),
-            0.3,
-        ),
-        (
-            hair(0.1, 0.1, sigma_a_from_melanin(0.3, 0.0).unwrap()),
-            dir(-40.0, 1.0),
-            -0.6,
-        ),
+        (hair(0.3, 0.3, melanin(1.3)), dir(20.0, 0.3), 0.3),
+        (hair(0.1, 0.1, melanin(0.3)), dir(-40.0, 1.0), -0.6),
         (hair(0.15, 0.8, [0.0; 3]), dir(70.0, -2.0), 0.9),
-        (
-            hair(0.9, 0.15, sigma_a_from_melanin(8.0, 0.0).unwrap()),
-            dir(0.0, 0.0),
-            0.0,
-        ),
+        (hair(0.9, 0.15, melanin(8.0)), dir(0.0, 0.0), 0.0),
     ];
     for (k, (params, wo, h)) in cases.into_iter().enumerate() {
         let (stat, dof, p) = chi_square(params, wo, h, 400_000, 100 + k as u64);
@@ -203,7 +226,7 @@ fn f32_agrees_with_f64() {
     let mut rng = Pcg64::seed_from_u64(11);
     let mut worst = 0.0_f64;
     for _ in 0..200 {
-        let p = ChiangParams::new(
+        let p = try_params(
             rng.random_range(0.1..=1.0),
             rng.random_range(0.1..=1.0),
             rng.random_range(-10.0_f64..10.0).to_radians(),
@@ -216,14 +239,14 @@ fn f32_agrees_with_f64() {
         )
         .unwrap();
         let (m64, m32) = (ChiangHair::<f64>::new(&p), ChiangHair::<f32>::new(&p));
-        let peak = 1.0 / hairmath::bcsdf::longitudinal_variance(p.beta_m()).min(1.0);
+        let peak = 1.0 / hairmath::bcsdf::longitudinal_variance(p.beta_m.get()).min(1.0);
         for _ in 0..500 {
             let wi = dir(rng.random_range(-90.0..90.0), rng.random_range(-3.2..3.2));
             let wo = dir(rng.random_range(-90.0..90.0), rng.random_range(-3.2..3.2));
             let h = rng.random_range(-1.0..=1.0);
-            let a = m64.eval(wi, wo, h);
+            let a = m64.eval(&Query::new(wi, wo, h));
             let to32 = |v: V3<f64>| V3::new(v.x as f32, v.y as f32, v.z as f32);
-            let b = m32.eval(to32(wi), to32(wo), h as f32);
+            let b = m32.eval(&Query::new(to32(wi), to32(wo), h as f32));
             for c in 0..3 {
                 let err = (b[c] as f64 - a[c]).abs() / (a[c] + 1e-6 * peak);
                 worst = worst.max(err);
@@ -264,14 +287,13 @@ fn agrees_with_mitsuba() {
             .flat_map(|r| r[14..17].to_vec())
             .fold(0.0, f64::max);
         for r in set {
-            let p =
-                ChiangParams::new(r[0], r[1], r[2].to_radians(), r[3], [r[4], r[5], r[6]]).unwrap();
+            let p = try_params(r[0], r[1], r[2].to_radians(), r[3], [r[4], r[5], r[6]]).unwrap();
             let model = ChiangHair::<f64>::new(&p);
-            let s = model.eval(
+            let s = model.eval(&Query::new(
                 V3::new(r[7], r[8], r[9]),
                 V3::new(r[10], r[11], r[12]),
                 r[13],
-            );
+            ));
             for c in 0..3 {
                 let err = (s[c] - r[14 + c]).abs() / (r[14 + c] + 1e-5 * scale);
                 worst = worst.max(err);
@@ -295,7 +317,7 @@ mod properties {
             .prop_map(|(s, phi)| local_direction(s, (1.0 - s * s).max(0.0).sqrt(), phi))
     }
 
-    fn params() -> impl Strategy<Value = ChiangParams> {
+    fn params() -> impl Strategy<Value = HairParams> {
         (
             1e-3..=1.0f64,
             1e-3..=1.0f64,
@@ -304,9 +326,7 @@ mod properties {
             0.0..50.0f64,
             0.0..50.0f64,
         )
-            .prop_map(|(bm, bn, a, eta, s0, s1)| {
-                ChiangParams::new(bm, bn, a, eta, [s0, s1, 0.0]).unwrap()
-            })
+            .prop_map(|(bm, bn, a, eta, s0, s1)| try_params(bm, bn, a, eta, [s0, s1, 0.0]).unwrap())
     }
 
     proptest! {
@@ -318,13 +338,13 @@ mod properties {
             p in params(), wi in finite_vector(), wo in finite_vector(), h in -1e3..1e3f64
         ) {
             let model = ChiangHair::<f64>::new(&p);
-            let f = model.eval(wi, wo, h);
+            let f = model.eval(&Query::new(wi, wo, h));
             prop_assert!(f.iter().all(|x| x.is_finite() && *x >= 0.0), "{:?}", f);
-            let pdf = model.pdf(wi, wo, h);
+            let pdf = model.pdf(&Query::new(wi, wo, h));
             prop_assert!(pdf.is_finite() && pdf >= 0.0);
             let m = ChiangHair::<f32>::new(&p);
             let c = |v: V3<f64>| V3::new(v.x as f32, v.y as f32, v.z as f32);
-            let f = m.eval(c(wi), c(wo), h as f32);
+            let f = m.eval(&Query::new(c(wi), c(wo), h as f32));
             prop_assert!(f.iter().all(|x| x.is_finite() && *x >= 0.0), "{:?}", f);
         }
 
@@ -332,12 +352,12 @@ mod properties {
         #[test]
         fn samples_are_valid(p in params(), wo in unit_vector(), h in -1.0..=1.0f64,
                              u0 in 0.0..=1.0f64, u1 in 0.0..=1.0f64, uc in 0.0..=1.0f64) {
-            let s = ChiangHair::<f64>::new(&p).sample(wo, h, [u0, u1], uc);
+            let s = ChiangHair::<f64>::new(&p).sample(wo, h, numbers([u0, u1], uc));
             let len = s.wi.dot(s.wi).sqrt();
             prop_assert!((len - 1.0).abs() < 1e-9, "{:?}", s);
             prop_assert!(s.pdf.is_finite() && s.pdf >= 0.0 && s.value.iter().all(|x| x.is_finite() && *x >= 0.0));
             let s = ChiangHair::<f32>::new(&p).sample(
-                V3::new(wo.x as f32, wo.y as f32, wo.z as f32), h as f32, [u0 as f32, u1 as f32], uc as f32);
+                V3::new(wo.x as f32, wo.y as f32, wo.z as f32), h as f32, numbers([u0 as f32, u1 as f32], uc as f32));
             prop_assert!(s.pdf.is_finite() && s.pdf >= 0.0 && s.value.iter().all(|x| x.is_finite() && *x >= 0.0));
         }
     }
@@ -347,19 +367,16 @@ mod properties {
 fn invalid_parameters_are_typed_errors_that_say_what_is_allowed() {
     let ok = [0.1; 3];
     for (result, needle) in [
-        (ChiangParams::new(0.0, 0.3, 0.0, 1.55, ok), "beta_m"),
-        (ChiangParams::new(0.3, 1.5, 0.0, 1.55, ok), "beta_n"),
-        (ChiangParams::new(0.3, 0.3, 0.0, 1.0, ok), "eta"),
-        (ChiangParams::new(0.3, 0.3, 2.0, 1.55, ok), "alpha"),
+        (try_params(0.0, 0.3, 0.0, 1.55, ok), "beta_m"),
+        (try_params(0.3, 1.5, 0.0, 1.55, ok), "beta_n"),
+        (try_params(0.3, 0.3, 0.0, 1.0, ok), "eta"),
+        (try_params(0.3, 0.3, 2.0, 1.55, ok), "alpha"),
+        (try_params(0.3, 0.3, 0.0, 1.55, [-1.0, 0.0, 0.0]), "sigma_a"),
         (
-            ChiangParams::new(0.3, 0.3, 0.0, 1.55, [-1.0, 0.0, 0.0]),
+            try_params(0.3, 0.3, 0.0, 1.55, [f64::INFINITY, 0.0, 0.0]),
             "sigma_a",
         ),
-        (
-            ChiangParams::new(0.3, 0.3, 0.0, 1.55, [f64::INFINITY, 0.0, 0.0]),
-            "sigma_a",
-        ),
-        (ChiangParams::new(f64::NAN, 0.3, 0.0, 1.55, ok), "beta_m"),
+        (try_params(f64::NAN, 0.3, 0.0, 1.55, ok), "beta_m"),
     ] {
         let e = result.unwrap_err().to_string();
         assert!(e.contains(needle) && e.contains("must"), "{e}");
@@ -385,8 +402,7 @@ fn hard_cases_are_finite_and_non_negative() {
     for &beta in &[0.01, 1.0] {
         for &sa in &[0.0, 20.0] {
             for &(alpha, eta) in &[(0.0, 1.0001), (60.0_f64.to_radians(), 1.55)] {
-                params
-                    .push(ChiangParams::new(beta, beta, alpha, eta, [sa, 0.5 * sa, 0.0]).unwrap());
+                params.push(try_params(beta, beta, alpha, eta, [sa, 0.5 * sa, 0.0]).unwrap());
             }
         }
     }
@@ -397,20 +413,21 @@ fn hard_cases_are_finite_and_non_negative() {
         for &wi in &dirs {
             for &wo in &dirs {
                 for &h in &[-1.0, 0.0, 1.0] {
-                    let f = m64.eval(wi, wo, h);
+                    let f = m64.eval(&Query::new(wi, wo, h));
                     assert!(
-                        ok(&f) && ok(&[m64.pdf(wi, wo, h)]),
+                        ok(&f) && ok(&[m64.pdf(&Query::new(wi, wo, h))]),
                         "{p:?} {wi:?} {wo:?} {h}: {f:?}"
                     );
-                    let g = m32.eval(c(wi), c(wo), h as f32).map(f64::from);
+                    let q32 = Query::new(c(wi), c(wo), h as f32);
+                    let g = m32.eval(&q32).map(f64::from);
                     assert!(
-                        ok(&g) && ok(&[m32.pdf(c(wi), c(wo), h as f32) as f64]),
+                        ok(&g) && ok(&[m32.pdf(&q32) as f64]),
                         "f32 {p:?} {wi:?} {wo:?} {h}"
                     );
                 }
-                let s = m64.sample(wo, 1.0, [0.0, 1.0], 1.0);
+                let s = m64.sample(wo, 1.0, numbers([0.0, 1.0], 1.0));
                 assert!(ok(&s.value) && ok(&[s.pdf]), "{s:?}");
-                let s = m32.sample(c(wo), -1.0, [1.0, 0.0], 0.0);
+                let s = m32.sample(c(wo), -1.0, numbers([1.0, 0.0], 0.0));
                 assert!(ok(&s.value.map(f64::from)) && ok(&[s.pdf as f64]), "{s:?}");
             }
         }
@@ -427,10 +444,9 @@ fn white_furnace_at_extreme_parameters() {
         (40.0_f64.to_radians(), 1.55),
         (-40.0_f64.to_radians(), 2.5),
     ] {
-        let model =
-            ChiangHair::<f64>::new(&ChiangParams::new(0.2, 0.2, alpha, eta, [0.0; 3]).unwrap());
+        let model = ChiangHair::<f64>::new(&try_params(0.2, 0.2, alpha, eta, [0.0; 3]).unwrap());
         for (wo, h) in [(dir(89.0, 0.5), -0.5), (dir(0.0, 0.0), 1.0)] {
-            let albedo = rule.integrate(|wi| model.eval(wi, wo, h)[0]);
+            let albedo = rule.integrate(|wi| model.eval(&Query::new(wi, wo, h))[0]);
             assert!(
                 (albedo - 1.0).abs() < 1e-3,
                 "alpha {alpha} eta {eta} wo {wo:?}: {albedo}"

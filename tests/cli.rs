@@ -1,7 +1,11 @@
 //! Integration tests of the `hairmath` command-line tool.
 
-use hairmath::bcsdf::{ChiangFarField, ChiangHair, ChiangParams, FarFieldRule};
+use hairmath::absorption::Absorption;
+use hairmath::bcsdf::{Bcsdf, ChiangFarField, ChiangHair, FarFieldRule, Query};
 use hairmath::geometry::V3;
+use hairmath::params::{
+    AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
+};
 use hairmath::sh::gaunt::{gaunt_complex, gaunt_real};
 use std::io::Write;
 use std::process::{Command, Output, Stdio};
@@ -52,10 +56,28 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// The parameters of the standard flags.
+fn standard_params() -> HairParams {
+    HairParams {
+        beta_m: LongitudinalRoughness::new(0.3).unwrap(),
+        beta_n: AzimuthalRoughness::new(0.25).unwrap(),
+        alpha: CuticleTilt::new(3f64.to_radians()).unwrap(),
+        eta: RefractiveIndex::new(1.55).unwrap(),
+        sigma_a: Absorption::new([0.5, 0.8, 1.4]).unwrap(),
+    }
+}
+
 /// The model of the standard flags.
 fn standard_hair() -> ChiangHair<f64> {
-    let params = ChiangParams::new(0.3, 0.25, 3f64.to_radians(), 1.55, [0.5, 0.8, 1.4]).unwrap();
-    ChiangHair::new(&params)
+    ChiangHair::new(&standard_params())
+}
+
+/// The far field of the standard flags with `n` nodes.
+fn standard_far(n: usize) -> ChiangFarField<f64> {
+    ChiangFarField::new(
+        &standard_params(),
+        &FarFieldRule::gauss_legendre(n).unwrap(),
+    )
 }
 
 /// `w` normalised, as the tool does.
@@ -66,7 +88,7 @@ fn unit(w: [f64; 3]) -> V3<f64> {
 
 /// The library's value for the standard flags, with directions normalised as the tool does.
 fn expected(wi: [f64; 3], wo: [f64; 3], h: f64) -> [f64; 3] {
-    standard_hair().eval(unit(wi), unit(wo), h)
+    standard_hair().eval(&Query::new(unit(wi), unit(wo), h))
 }
 
 /// The last three fields of a CSV line as numbers.
@@ -284,8 +306,10 @@ fn far_input() -> String {
 
 #[test]
 fn chiang_far_matches_the_library_without_h() {
-    let far = |n| ChiangFarField::new(standard_hair(), &FarFieldRule::gauss_legendre(n).unwrap());
-    for (extra, model) in [(&[][..], far(64)), (&["--nodes", "8"][..], far(8))] {
+    for (extra, model) in [
+        (&[][..], standard_far(64)),
+        (&["--nodes", "8"][..], standard_far(8)),
+    ] {
         let args: Vec<&str> = ["--model", "chiang-far"]
             .iter()
             .chain(extra)
@@ -298,7 +322,7 @@ fn chiang_far_matches_the_library_without_h() {
         assert_eq!(lines[0], "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,f_r,f_g,f_b");
         assert_eq!(lines.len(), 1 + FAR_ROWS.len(), "{out}");
         for (line, (wi, wo)) in lines[1..].iter().zip(FAR_ROWS) {
-            let want = model.eval(unit(wi), unit(wo));
+            let want = model.eval(&Query::far(unit(wi), unit(wo)));
             assert_eq!(appended(line), want, "{extra:?}: {line}");
             assert!(want.iter().all(|&v| v > 0.0));
         }
@@ -310,13 +334,13 @@ fn chiang_far_reference_matches_the_library() {
     let o = eval(&["--model", "chiang-far", "--reference"], &far_input());
     assert!(o.status.success(), "stderr: {}", stderr(&o));
     let out = stdout(&o);
-    let fast = ChiangFarField::new(standard_hair(), &FarFieldRule::gauss_legendre(64).unwrap());
+    let fast = standard_far(64);
     for (line, (wi, wo)) in out.lines().skip(1).zip(FAR_ROWS) {
         let want = standard_hair()
             .far_field_reference(unit(wi), unit(wo), 1e-9)
             .value;
         assert_eq!(appended(line), want, "{line}");
-        let fast = fast.eval(unit(wi), unit(wo));
+        let fast = fast.eval(&Query::far(unit(wi), unit(wo)));
         assert!(
             (fast[1] - want[1]).abs() <= 1e-3 * want[1],
             "{fast:?} {want:?}"
@@ -333,8 +357,7 @@ fn h_is_optional_only_for_chiang_far() {
         "h is ignored, even out of range: {}",
         stderr(&o)
     );
-    let far = ChiangFarField::new(standard_hair(), &FarFieldRule::gauss_legendre(64).unwrap());
-    let want = far.eval(unit([0.0, 1.0, 0.0]), unit([0.0, 0.6, 0.8]));
+    let want = standard_far(64).eval(&Query::far(unit([0.0, 1.0, 0.0]), unit([0.0, 0.6, 0.8])));
     assert_eq!(appended(stdout(&o).lines().nth(1).unwrap_or("")), want);
 
     let o = eval(&["--model", "chiang"], &far_input());

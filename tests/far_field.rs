@@ -3,18 +3,31 @@
 //! refinement, the fast integrator against the reference, the sampler against the pdf, and the
 //! zero-roughness limit against Marschner 2003's root sum.
 
+use hairmath::absorption::Absorption;
 use hairmath::azimuthal::{
     marschner_attenuation, marschner_exit_angle, marschner_np, trimmed_logistic,
 };
-use hairmath::bcsdf::{logistic_scale, ChiangFarField, ChiangHair, ChiangParams, FarFieldRule};
+use hairmath::bcsdf::{
+    logistic_scale, Bcsdf, ChiangFarField, ChiangHair, FarFieldRule, Query, RandomNumbers,
+    SampledBcsdf,
+};
 use hairmath::fresnel::bravais_eta_perpendicular;
 use hairmath::geometry::{local_direction, V3};
+use hairmath::params::{
+    AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
+};
 use hairmath::quadrature::{adaptive, SphereRule};
 use hairmath::real::wrap_angle;
 use std::f64::consts::{FRAC_PI_2, PI};
 
-fn params(beta_m: f64, beta_n: f64, sigma_a: [f64; 3]) -> ChiangParams {
-    ChiangParams::new(beta_m, beta_n, 2f64.to_radians(), 1.55, sigma_a).unwrap()
+fn params(beta_m: f64, beta_n: f64, sigma_a: [f64; 3]) -> HairParams {
+    HairParams {
+        beta_m: LongitudinalRoughness::new(beta_m).unwrap(),
+        beta_n: AzimuthalRoughness::new(beta_n).unwrap(),
+        alpha: CuticleTilt::from_degrees(2.0).unwrap(),
+        eta: RefractiveIndex::new(1.55).unwrap(),
+        sigma_a: Absorption::new(sigma_a).unwrap(),
+    }
 }
 
 fn dir(theta_deg: f64, phi: f64) -> V3<f64> {
@@ -31,10 +44,10 @@ fn far_field_white_furnace_is_one() {
     let coarse = SphereRule::new(32, 8, 256);
     let rule = FarFieldRule::gauss_legendre(32).unwrap();
     for (bm, bn) in [(0.1, 0.1), (0.2, 0.9), (0.5, 0.5), (0.9, 0.2), (0.9, 0.9)] {
-        let far = ChiangFarField::new(ChiangHair::<f64>::new(&params(bm, bn, [0.0; 3])), &rule);
+        let far = ChiangFarField::<f64>::new(&params(bm, bn, [0.0; 3]), &rule);
         let sphere = if bm < 0.2 { &fine } else { &coarse };
         for wo in [dir(0.0, 0.4), dir(-60.0, 2.0), dir(85.0, 0.0)] {
-            let albedo = sphere.integrate(|wi| far.eval(wi, wo)[2]);
+            let albedo = sphere.integrate(|wi| far.eval(&Query::far(wi, wo))[2]);
             assert!(
                 (albedo - 1.0).abs() < 1e-3,
                 "beta {bm} {bn} wo {wo:?}: {albedo}"
@@ -85,8 +98,9 @@ fn reference_integrator_converges_to_1e_9() {
 #[test]
 fn fast_integrator_meets_its_documented_bound() {
     for &(bn, nodes, bound) in hairmath::bcsdf::FAR_FIELD_ERROR_BOUNDS {
-        let hair = ChiangHair::<f64>::new(&params(0.3, bn, [0.0, 0.5, 10.0]));
-        let far = ChiangFarField::new(hair, &FarFieldRule::gauss_legendre(nodes).unwrap());
+        let p = params(0.3, bn, [0.0, 0.5, 10.0]);
+        let hair = ChiangHair::<f64>::new(&p);
+        let far = ChiangFarField::<f64>::new(&p, &FarFieldRule::gauss_legendre(nodes).unwrap());
         let mut worst = 0.0_f64;
         for &theta in &[0.0_f64, 1.3, FRAC_PI_2 - 1e-4] {
             let (s, c) = (theta.sin(), theta.cos());
@@ -127,15 +141,21 @@ fn fast_integrator_meets_its_documented_bound() {
 /// With sigma_a = 0 every far-field sample has weight 1, and the sampler is finite everywhere.
 #[test]
 fn far_field_sample_weights_are_one() {
-    let far = ChiangFarField::new(
-        ChiangHair::<f64>::new(&params(0.3, 0.4, [0.0; 3])),
+    let far = ChiangFarField::<f64>::new(
+        &params(0.3, 0.4, [0.0; 3]),
         &FarFieldRule::gauss_legendre(16).unwrap(),
     );
     for k in 0..2000 {
         let t = k as f64 / 2000.0;
         let wo = dir(-89.0 + 178.0 * t, 7.0 * t);
         let u = [(t * 7.31).fract(), (t * 3.77).fract()];
-        let s = far.sample(wo, u, (t * 5.13).fract(), (t * 11.9).fract());
+        let numbers = RandomNumbers {
+            lobe: (t * 5.13).fract(),
+            longitudinal: u[0],
+            cone: u[1],
+            offset: (t * 11.9).fract(),
+        };
+        let s = far.sample(wo, 0.0, numbers);
         assert!(s.pdf > 0.0, "{s:?}");
         for v in s.value {
             assert!((v / s.pdf - 1.0).abs() < 1e-9, "{s:?}");

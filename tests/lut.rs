@@ -4,13 +4,35 @@
 use core::f64::consts::{FRAC_PI_2, PI};
 use std::path::PathBuf;
 
+use hairmath::absorption::Absorption;
 use hairmath::azimuthal::{marschner_np, CausticParams};
 use hairmath::lut::{
     axis_cell, bake, error_vs_resolution, json_description, lookup_error, quantize_rgba8,
     raw_bytes, read_raw, write_raw, Axis, Baker, FarFieldN, GerardN, LutError, NguyenM, NguyenN,
     Table,
 };
+use hairmath::params::{AzimuthalRoughness, LobeShift, LobeWidth, RefractiveIndex};
 use hairmath::ParamError;
+
+/// A valid index (the bakers take validated parameters).
+fn eta(v: f64) -> RefractiveIndex {
+    RefractiveIndex::new(v).unwrap()
+}
+
+/// A valid absorption.
+fn sigma_a(rgb: [f64; 3]) -> Absorption {
+    Absorption::new(rgb).unwrap()
+}
+
+/// A valid azimuthal roughness.
+fn beta_n(v: f64) -> AzimuthalRoughness {
+    AzimuthalRoughness::new(v).unwrap()
+}
+
+/// The far-field baker of index 1.55 on [lo, hi] in beta_n.
+fn far_field(rgb: [f64; 3], lo: f64, hi: f64, rel_tol: f64) -> Result<FarFieldN, ParamError> {
+    FarFieldN::new(eta(1.55), sigma_a(rgb), beta_n(lo), beta_n(hi), rel_tol)
+}
 
 fn scratch_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("hairmath-lut-{}-{name}", std::process::id()));
@@ -156,7 +178,7 @@ fn invalid_shapes_and_parameters_are_typed_errors() {
     assert!(t.get(&[4], 0).is_none() && t.get(&[0], 1).is_none());
     assert!(matches!(quantize_rgba8(&t, &[0]), Err(LutError::Shape(_))));
 
-    let gerard = GerardN::new(1.55, FRAC_PI_2, None).unwrap();
+    let gerard = GerardN::new(eta(1.55), FRAC_PI_2, None).unwrap();
     assert!(matches!(bake(&gerard, &[8]), Err(LutError::Shape(_))));
     assert!(matches!(bake(&gerard, &[8, 1]), Err(LutError::Axis { .. })));
     assert!(matches!(
@@ -167,44 +189,47 @@ fn invalid_shapes_and_parameters_are_typed_errors() {
         bake(&gerard, &[65536, 65536]),
         Err(LutError::Shape(_))
     ));
+    // The bakers take validated parameters: an invalid index, absorption or lobe width is
+    // rejected by its type, with the same error wherever it enters.
     assert!(matches!(
-        GerardN::new(1.0, 1.0, None),
+        RefractiveIndex::new(1.0),
         Err(ParamError::OutOfRange { name: "eta", .. })
     ));
     assert!(matches!(
-        GerardN::new(1.55, 2.0, None),
+        GerardN::new(eta(1.55), 2.0, None),
         Err(ParamError::OutOfRange {
             name: "theta_d_max",
             ..
         })
     ));
     assert!(matches!(
-        NguyenN::new(1.55, [0.1, -1.0, 0.0], None),
+        Absorption::new([0.1, -1.0, 0.0]),
         Err(ParamError::OutOfRange {
             name: "sigma_a",
             ..
         })
     ));
     assert!(matches!(
-        NguyenM::new(0.0, 0.0),
+        LobeWidth::new(0.0),
         Err(ParamError::OutOfRange { name: "beta_r", .. })
     ));
+    assert!(LobeShift::new(0.0).is_ok());
     assert!(matches!(
-        FarFieldN::new(1.55, [0.0; 3], 0.5, 0.4, 1e-6),
+        far_field([0.0; 3], 0.5, 0.4, 1e-6),
         Err(ParamError::OutOfRange {
             name: "beta_n_max",
             ..
         })
     ));
     assert!(matches!(
-        FarFieldN::new(1.55, [0.0; 3], 0.2, 0.8, 0.0),
+        far_field([0.0; 3], 0.2, 0.8, 0.0),
         Err(ParamError::OutOfRange {
             name: "rel_tol",
             ..
         })
     ));
     // A LutError wraps a ParamError.
-    let e: LutError = GerardN::new(f64::NAN, 1.0, None).unwrap_err().into();
+    let e: LutError = RefractiveIndex::new(f64::NAN).unwrap_err().into();
     assert!(e.to_string().contains("eta"));
 }
 
@@ -212,15 +237,19 @@ fn small_bakers() -> Vec<(Box<dyn Baker>, Vec<usize>)> {
     vec![
         (Box::new(NguyenM::default()), vec![9, 7]),
         (
-            Box::new(NguyenN::new(1.55, [0.2, 0.4, 0.8], Some(CausticParams::default())).unwrap()),
+            Box::new(NguyenN::new(
+                eta(1.55),
+                sigma_a([0.2, 0.4, 0.8]),
+                Some(CausticParams::default()),
+            )),
             vec![9, 7],
         ),
         (
-            Box::new(GerardN::new(1.55, FRAC_PI_2, Some(CausticParams::default())).unwrap()),
+            Box::new(GerardN::new(eta(1.55), FRAC_PI_2, Some(CausticParams::default())).unwrap()),
             vec![9, 7],
         ),
         (
-            Box::new(FarFieldN::new(1.55, [0.3, 0.6, 1.2], 0.2, 0.8, 1e-6).unwrap()),
+            Box::new(far_field([0.3, 0.6, 1.2], 0.2, 0.8, 1e-6).unwrap()),
             vec![5, 3, 2],
         ),
     ]
@@ -254,7 +283,7 @@ fn baked_tables_regenerate_bit_for_bit() {
 /// The committed golden table: a 9 x 5 Gerard LUT. Regenerate with `HAIRMATH_BLESS=1`.
 #[test]
 fn golden_gerard_table_matches() {
-    let baker = GerardN::new(1.55, FRAC_PI_2, Some(CausticParams::default())).unwrap();
+    let baker = GerardN::new(eta(1.55), FRAC_PI_2, Some(CausticParams::default())).unwrap();
     let table = bake(&baker, &[9, 5]).unwrap();
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data");
     let path = dir.join("gerard_9x5.f32");
@@ -270,7 +299,7 @@ fn golden_gerard_table_matches() {
 
 #[test]
 fn json_description_names_everything() {
-    let baker = NguyenN::new(1.55, [0.2, 0.4, 0.8], None).unwrap();
+    let baker = NguyenN::new(eta(1.55), sigma_a([0.2, 0.4, 0.8]), None);
     let table = bake(&baker, &[4, 3]).unwrap();
     let json = json_description(&table, "n.f32");
     for needle in [
@@ -349,15 +378,19 @@ fn marschner_n_is_even_in_phi_and_finite_at_grazing() {
             }
         }
     }
-    let far = FarFieldN::new(1.55, [0.3, 0.6, 1.2], 0.2, 0.8, 1e-7).unwrap();
+    let far = far_field([0.3, 0.6, 1.2], 0.2, 0.8, 1e-7).unwrap();
     let mut a = [0.0; 12];
     let mut b = [0.0; 12];
     for &(phi, theta_o) in &[(0.3, 0.2), (2.0, 1.0), (3.0, 0.7)] {
         far.eval(&[phi, theta_o, 0.3], &mut a);
         // The table clamps phi to [0, pi]; evaluate -phi and -theta_o through the model.
-        let hair = hairmath::bcsdf::ChiangHair::<f64>::new(
-            &hairmath::bcsdf::ChiangParams::new(0.3, 0.3, 0.0, 1.55, [0.3, 0.6, 1.2]).unwrap(),
-        );
+        let hair = hairmath::bcsdf::ChiangHair::<f64>::new(&hairmath::params::HairParams {
+            beta_n: beta_n(0.3),
+            alpha: hairmath::params::CuticleTilt::new(0.0).unwrap(),
+            eta: eta(1.55),
+            sigma_a: sigma_a([0.3, 0.6, 1.2]),
+            ..Default::default()
+        });
         let (an, _) = hair.far_field_azimuthal_reference(-theta_o.sin(), theta_o.cos(), -phi, 1e-7);
         for p in 0..4 {
             for c in 0..3 {
@@ -381,15 +414,19 @@ fn error_decreases_with_resolution() {
             vec![vec![16, 16], vec![64, 64], vec![256, 256]],
         ),
         (
-            Box::new(GerardN::new(1.55, 1.4, Some(CausticParams::default())).unwrap()),
+            Box::new(GerardN::new(eta(1.55), 1.4, Some(CausticParams::default())).unwrap()),
             vec![vec![16, 8], vec![64, 32], vec![256, 128]],
         ),
         (
-            Box::new(NguyenN::new(1.55, [0.2, 0.4, 0.8], Some(CausticParams::default())).unwrap()),
+            Box::new(NguyenN::new(
+                eta(1.55),
+                sigma_a([0.2, 0.4, 0.8]),
+                Some(CausticParams::default()),
+            )),
             vec![vec![16, 16], vec![64, 64], vec![256, 256]],
         ),
         (
-            Box::new(FarFieldN::new(1.55, [0.3, 0.6, 1.2], 0.3, 0.6, 1e-5).unwrap()),
+            Box::new(far_field([0.3, 0.6, 1.2], 0.3, 0.6, 1e-5).unwrap()),
             vec![vec![6, 4, 2], vec![12, 8, 3]],
         ),
     ];
@@ -429,15 +466,15 @@ fn print_error_tables() {
             vec![vec![32, 32], vec![64, 64], vec![128, 128], vec![256, 256]],
         ),
         (
-            Box::new(NguyenN::new(1.55, [0.2, 0.4, 0.8], caustic).unwrap()),
+            Box::new(NguyenN::new(eta(1.55), sigma_a([0.2, 0.4, 0.8]), caustic)),
             vec![vec![32, 32], vec![64, 64], vec![128, 128], vec![256, 256]],
         ),
         (
-            Box::new(GerardN::new(1.55, FRAC_PI_2, caustic).unwrap()),
+            Box::new(GerardN::new(eta(1.55), FRAC_PI_2, caustic).unwrap()),
             vec![vec![32, 16], vec![64, 32], vec![128, 64], vec![256, 128]],
         ),
         (
-            Box::new(FarFieldN::new(1.55, [0.3, 0.6, 1.2], 0.2, 0.8, 1e-6).unwrap()),
+            Box::new(far_field([0.3, 0.6, 1.2], 0.2, 0.8, 1e-6).unwrap()),
             vec![vec![8, 4, 3], vec![16, 8, 4], vec![32, 16, 8]],
         ),
     ];

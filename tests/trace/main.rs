@@ -9,13 +9,20 @@
 //! `coverage_matches_the_source` scans `src/` so that a new public generic function without a
 //! trace test here fails the suite.
 
+use hairmath::absorption::{segment_length, Absorption};
 use hairmath::absorption::{segment_transmittance, PathLength};
 use hairmath::azimuthal::{
     attenuations, attenuations_at_offset, attenuations_from_fresnel, exit_angle,
     exit_angle_of_offset, logistic, logistic_cdf, refracted_offset, sample_trimmed_logistic,
     sample_wrapped_gaussian, trimmed_logistic, trimmed_mass, wrapped_gaussian,
 };
-use hairmath::bcsdf::{ChiangFarField, ChiangHair, ChiangParams, FarFieldRule, CHIANG_CONSTANTS};
+use hairmath::azimuthal::{FibrePath, Refraction, TrimmedLogistic};
+use hairmath::bcsdf::{
+    query_of, query_parameters, trace_eval, trace_model, traced_inputs, Bcsdf, ChiangFarField,
+    ChiangHair, ChiangUniforms, FarFieldRule, Model, Query, RandomNumbers, SampledBcsdf,
+    UniformBlock,
+};
+use hairmath::fresnel::fresnel_from_outside;
 use hairmath::fresnel::{
     bravais_eta_parallel, bravais_eta_perpendicular, fresnel_dielectric, fresnel_schlick,
 };
@@ -29,7 +36,11 @@ use hairmath::lobe::{
     hg_gerard_printed, DeonLobe, HenyeyGreenstein,
 };
 use hairmath::lut::axis_cell;
+use hairmath::params::{
+    AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
+};
 use hairmath::real::{horner, pi, safe_asin, safe_sqrt, trace, wrap_angle, Graph, Real, Traced};
+use hairmath::real::{ArgType, Parameter, ResultType};
 use hairmath::sh::basis::{eval_sh, eval_sh_into};
 use hairmath::sh::product::{product, triple_product_integral, ProductPlan};
 use hairmath::sh::rotation::{rotate_band1, rotate_band2, rotate_bands012, rotate_zonal_into};
@@ -99,6 +110,25 @@ macro_rules! case {
     }};
 }
 
+/// `model_case!(label, model, extra, result, inputs, |m, x| body)`: traces `body` through the
+/// model contract ([`trace_model`]: the first argument is the model's uniforms as a named
+/// struct, then the parameters `extra`; `m` is the model rebuilt from them, `x` the inputs of
+/// `extra`) and checks it against the same body on the `f32` model built from each row's
+/// uniforms. Each input row holds the uniforms' values, then those of `extra`.
+macro_rules! model_case {
+    ($label:expr, $model:expr, $extra:expr, $result:expr, $inputs:expr, |$m:ident, $x:ident| $body:expr) => {{
+        let model = $model;
+        let inputs: Vec<Vec<f32>> = $inputs;
+        let width = model.uniforms().to_values().len();
+        let graph = trace_model(&model, $extra, $result, |$m, $x: &[Traced]| $body);
+        check(&$label, &inputs, &graph, |row: &[f32]| {
+            let $m = &model.with_uniforms::<f32>(UniformBlock::from_values(&row[..width]));
+            let $x = &row[width..];
+            $body
+        });
+    }};
+}
+
 /// One `#[test]` per entry, and `COVERED`: the function names the entries test, as
 /// [`scan_public_generic_functions`] spells them.
 macro_rules! traced_tests {
@@ -158,8 +188,14 @@ const MATERIALS: &[Material] = &[
     (0.5, 0.2, 0.1, 1.55, [0.2, 0.4, 0.8], Some(100.0)),
 ];
 
-fn params((beta_m, beta_n, alpha, eta, sigma_a, _): Material) -> ChiangParams {
-    ChiangParams::new(beta_m, beta_n, alpha, eta, sigma_a).unwrap()
+fn params((beta_m, beta_n, alpha, eta, sigma_a, _): Material) -> HairParams {
+    HairParams {
+        beta_m: LongitudinalRoughness::new(beta_m).unwrap(),
+        beta_n: AzimuthalRoughness::new(beta_n).unwrap(),
+        alpha: CuticleTilt::new(alpha).unwrap(),
+        eta: RefractiveIndex::new(eta).unwrap(),
+        sigma_a: Absorption::new(sigma_a).unwrap(),
+    }
 }
 
 /// A splitmix64 stream of deterministic pseudo-random inputs.
@@ -212,19 +248,26 @@ impl Gen {
         };
         [wi, wo].concat()
     }
-    /// The constants of `ChiangHair::<f32>::new` and sigma_a, of one of `MATERIALS`.
+    /// The uniforms ([`ChiangUniforms`]) of one of `MATERIALS`, with its variance override
+    /// (which no beta_m reaches) written into the lobe fields by name.
     fn hair(&mut self) -> Vec<f64> {
         let m = MATERIALS[self.below(MATERIALS.len())];
-        let hair = ChiangHair::<f32>::new(&params(m));
-        let mut c = hair.constants().map(f64::from);
+        let mut u = ChiangUniforms::new(&params(m));
         if let Some(v) = m.5 {
-            let v = [v, 0.25 * v, 4.0 * v, 4.0 * v];
-            for (p, &vp) in v.iter().enumerate() {
-                let lobe = DeonLobe::<f64>::new(vp);
-                (c[p], c[4 + p], c[8 + p]) = (vp, lobe.inv_v, lobe.norm);
-            }
+            let [r, tt, trt] = [v, 0.25 * v, 4.0 * v].map(DeonLobe::<f64>::new);
+            (u.variance_r, u.inv_variance_r, u.lobe_norm_r) = (v, r.inv_v, r.norm);
+            (u.variance_tt, u.inv_variance_tt, u.lobe_norm_tt) = (0.25 * v, tt.inv_v, tt.norm);
+            (u.variance_trt, u.inv_variance_trt, u.lobe_norm_trt) = (4.0 * v, trt.inv_v, trt.norm);
         }
-        [&c[..], &hair.sigma_a().map(f64::from)[..]].concat()
+        u.to_values()
+    }
+    /// A query's arguments: a direction pair and an offset.
+    fn query(&mut self) -> Vec<f64> {
+        [self.pair(), vec![self.pick(&SIN)]].concat()
+    }
+    /// Uniform numbers for sampling, in the order of [`RandomNumbers`]' fields.
+    fn numbers(&mut self) -> Vec<f64> {
+        vec![self.pick(&U), self.pick(&U), self.pick(&U), self.pick(&U)]
     }
 }
 
@@ -312,19 +355,47 @@ fn of_angles<R: Real>(a: FibreAngles<R>) -> Vec<R> {
         a.phi,
     ]
 }
-/// The number of material arguments (the constants, then sigma_a); the direction arguments
-/// start here.
-const MAT: usize = CHIANG_CONSTANTS + 3;
-/// The model from the first [`MAT`] arguments: the constants, then sigma_a.
-fn chiang<R: Real>(x: &[R]) -> ChiangHair<R> {
-    const K: usize = CHIANG_CONSTANTS;
-    ChiangHair::from_constants(arr(&x[..K]), arr(&x[K..K + 3]))
+/// The number of scalars of the uniforms ([`ChiangUniforms`]); a query's arguments follow.
+fn mat() -> usize {
+    ChiangUniforms::<f64>::fields()
+        .iter()
+        .map(|f| f.width)
+        .sum()
 }
-/// Material, wi, wo, h: the arguments of `ChiangHair::eval` and `pdf`.
+/// The uniforms of a random material, then a query (wi, wo, h).
 fn chiang_rows() -> Vec<Vec<f32>> {
-    let rows = rows(|g| [g.hair(), g.pair(), vec![g.pick(&SIN)]].concat());
-    assert!(rows.iter().all(|r| r.len() == MAT + 7));
-    rows
+    rows(|g| [g.hair(), g.query()].concat())
+}
+/// `1 / x`.
+fn recip<R: Real>(x: R) -> R {
+    R::c(1.0) / x
+}
+/// Constants of the working precision.
+fn consts<R: Real>(values: &[f64]) -> Vec<R> {
+    values.iter().map(|&v| R::c(v)).collect()
+}
+/// [`RandomNumbers`] from four arguments.
+fn numbers<R: Real>(x: &[R]) -> RandomNumbers<R> {
+    RandomNumbers {
+        lobe: x[0],
+        longitudinal: x[1],
+        cone: x[2],
+        offset: x[3],
+    }
+}
+/// The sampling arguments: wo, h, then the four numbers.
+fn sample_parameters() -> Vec<Parameter> {
+    let mut p = vec![Parameter {
+        name: "wo".into(),
+        ty: ArgType::Vec3,
+    }];
+    for name in ["h", "lobe", "longitudinal", "cone", "offset"] {
+        p.push(Parameter {
+            name: name.into(),
+            ty: ArgType::Scalar,
+        });
+    }
+    p
 }
 
 /// Listed rows first (the hard cases), then rows built by `row` up to `N`, rounded to `f32`.
@@ -602,6 +673,12 @@ traced_tests! {
         let inputs = scalars(&[SIN, ETA]);
         case!("fresnel_dielectric", inputs, |x| vec![fresnel_dielectric(x[0], x[1])]);
     }
+    fresnel_from_outside_ ["fresnel_from_outside"] {
+        let inputs = scalars(&[UNIT, ETA]);
+        case!("fresnel_from_outside", inputs, |x| {
+            vec![fresnel_from_outside(x[0], x[1], recip(x[1]))]
+        });
+    }
     fresnel_schlick_ ["fresnel_schlick"] {
         let inputs = scalars(&[SIN, ETA]);
         case!("fresnel_schlick", inputs, |x| vec![fresnel_schlick(x[0], x[1])]);
@@ -612,6 +689,14 @@ traced_tests! {
         });
     }
 
+    absorption_segment_length ["segment_length"] {
+        for path in [PathLength::Chord, PathLength::Marschner2003] {
+            let inputs = scalars(&[UNIT, COS_THETA_T]);
+            case!(format!("segment_length({path:?})"), inputs, |x| {
+                vec![segment_length(x[0], recip(x[1]), path)]
+            });
+        }
+    }
     absorption_segment_transmittance ["segment_transmittance"] {
         for path in [PathLength::Chord, PathLength::Marschner2003] {
             let inputs = scalars(&[SIGMA_A, UNIT, COS_THETA_T]);
@@ -691,6 +776,40 @@ traced_tests! {
             vec![exit_angle_of_offset(x[0], x[1], x[2], x[3])]
         });
     }
+    azimuthal_path [
+        "Refraction::new", "Refraction::sin_gamma_t", "Refraction::path",
+        "FibrePath::transmittance", "FibrePath::attenuations"
+    ] {
+        // Inclination (sin, cos), eta, offset, sigma_a; one trace per path-length model.
+        for length in [PathLength::Chord, PathLength::Marschner2003] {
+            let inputs = rows(|g| {
+                [&g.sin_cos()[..], &[g.pick(&ETA), g.pick(&SIN), g.pick(&SIGMA_A)]].concat()
+            });
+            case!(format!("Refraction::path({length:?})"), inputs, |x| {
+                let r = Refraction::new(x[0], x[1], x[2], recip(x[2]));
+                let p: FibrePath<_> = r.path(x[3], length);
+                [
+                    vec![r.sin_gamma_t(x[3]), p.gamma_o, p.gamma_t, p.segment_length, p.fresnel],
+                    vec![p.transmittance(x[4])],
+                    p.attenuations(x[4]).to_vec(),
+                ]
+                .concat()
+            });
+        }
+    }
+    azimuthal_trimmed_logistic [
+        "TrimmedLogistic::new", "TrimmedLogistic::density", "TrimmedLogistic::densities",
+        "TrimmedLogistic::sample"
+    ] {
+        case!("TrimmedLogistic", scalars(&[SCALE, ANGLE, ANGLE, ANGLE, U]), |x| {
+            let d = TrimmedLogistic::new(x[0]);
+            [
+                vec![d.density(x[1]), d.sample(x[4])],
+                d.densities([x[1], x[2], x[3]]).to_vec(),
+            ]
+            .concat()
+        });
+    }
     azimuthal_logistic ["logistic", "logistic_cdf", "trimmed_logistic", "trimmed_mass", "sample_trimmed_logistic"] {
         case!("logistic", scalars(&[ANGLE, SCALE]), |x| {
             vec![logistic(x[0], x[1]), logistic_cdf(x[0], x[1]), trimmed_logistic(x[0], x[1]), trimmed_mass(x[1])]
@@ -706,87 +825,116 @@ traced_tests! {
         });
     }
 
-    chiang_new ["ChiangHair::new"] {
-        // The constructor folds a material to constants: one trace without inputs per material.
+    chiang_new ["ChiangHair::new", "ChiangHair::uniforms"] {
+        // The constructor folds a material to uniforms: one trace without inputs per material.
         for (k, &m) in MATERIALS.iter().enumerate() {
             case!(format!("ChiangHair::new(MATERIALS[{k}])"), vec![vec![]], |_x| {
-                ChiangHair::new(&params(m)).constants().to_vec()
+                ChiangHair::new(&params(m)).uniforms().to_values()
             });
         }
     }
-    chiang_constants [
-        "ChiangHair::from_constants", "ChiangHair::constants", "ChiangHair::sigma_a",
-        "ChiangHair::eta"
+    chiang_uniforms [
+        "ChiangHair::from_uniforms", "ChiangHair::eta", "ChiangHair::lobe_names",
+        "ChiangHair::uses_offset", "ChiangHair::with_uniforms", "UniformValue::push_to",
+        "UniformValue::take_from"
     ] {
-        case!("ChiangHair::constants", rows(|g| g.hair()), |x| {
-            let hair = chiang(x);
-            [&hair.constants()[..], &hair.sigma_a()[..], &[hair.eta()]].concat()
+        let model = ChiangHair::new(&HairParams::default());
+        model_case!("ChiangHair::from_uniforms", model, vec![], ResultType::Scalars, rows(|g| g.hair()), |m, _x| {
+            let flags = [m.lobe_names().len() as f64, f64::from(u8::from(m.uses_offset()))];
+            [m.uniforms().to_values(), vec![m.eta()], consts(&flags)].concat()
         });
     }
-    chiang_eval ["ChiangHair::eval", "LobeTerms::value"] {
-        case!("ChiangHair::eval", chiang_rows(), |x| {
-            chiang(x).eval(v3(&x[MAT..]), v3(&x[MAT + 3..]), x[MAT + 6]).to_vec()
+    chiang_eval [
+        "ChiangHair::eval", "LobeTerms::value", "PairAngles::of", "query_of", "Query::new"
+    ] {
+        // Through the library's own shader entry point: (uniforms, wi, wo, h) -> vec3.
+        let model = ChiangHair::new(&HairParams::default());
+        let graph = trace_eval(&model);
+        let wgsl = graph.to_wgsl("chiang_eval");
+        assert!(
+            wgsl.contains("struct ChiangUniforms {")
+                && wgsl.contains("fn chiang_eval(uniforms: ChiangUniforms, wi: vec3<f32>, wo: vec3<f32>, h: f32) -> vec3<f32>")
+                && wgsl.contains("uniforms.logistic_norm")
+                && wgsl.contains("uniforms.sigma_a.z"),
+            "{wgsl}"
+        );
+        check("ChiangHair::eval", &chiang_rows(), &graph, |row| {
+            let w = mat();
+            let m = model.with_uniforms::<f32>(UniformBlock::from_values(&row[..w]));
+            m.eval(&query_of(&row[w..])).to_vec()
         });
+        // The inputs of the library's helper are the uniforms then the query.
+        let q = [0.0, 1.0, 0.0, 0.0, 0.6, 0.8, 0.1];
+        let cpu = model.instantiate::<f32>().eval(&query_of(&q));
+        assert_eq!(graph.eval_f32(&traced_inputs(&model, &q)), cpu.to_vec());
     }
     chiang_eval_lobes ["ChiangHair::eval_lobes", "LobeTerms::per_lobe"] {
-        case!("ChiangHair::eval_lobes", chiang_rows(), |x| {
-            chiang(x).eval_lobes(v3(&x[MAT..]), v3(&x[MAT + 3..]), x[MAT + 6]).concat()
+        let model = ChiangHair::new(&HairParams::default());
+        model_case!("ChiangHair::eval_lobes", model, query_parameters(true), ResultType::Scalars, chiang_rows(), |m, x| {
+            m.eval_lobes(&query_of(x)).concat()
         });
     }
     chiang_pdf ["ChiangHair::pdf", "LobeTerms::pdf"] {
-        case!("ChiangHair::pdf", chiang_rows(), |x| {
-            vec![chiang(x).pdf(v3(&x[MAT..]), v3(&x[MAT + 3..]), x[MAT + 6])]
+        let model = ChiangHair::new(&HairParams::default());
+        model_case!("ChiangHair::pdf", model, query_parameters(true), ResultType::Scalars, chiang_rows(), |m, x| {
+            vec![m.pdf(&query_of(x))]
         });
     }
     chiang_sample ["ChiangHair::sample"] {
-        // Material, wo, h, u[0], u[1], uc.
-        let inputs = rows(|g| {
-            let rest = [g.pick(&SIN), g.pick(&U), g.pick(&U), g.pick(&U)];
-            [&g.hair()[..], &g.dir(), &rest].concat()
-        });
-        case!("ChiangHair::sample", inputs, |x| {
-            let u = [x[MAT + 4], x[MAT + 5]];
-            let s = chiang(x).sample(v3(&x[MAT..]), x[MAT + 3], u, x[MAT + 6]);
+        // Uniforms, wo, h, then the four numbers.
+        let inputs = rows(|g| [&g.hair()[..], &g.dir(), &[g.pick(&SIN)], &g.numbers()].concat());
+        let model = ChiangHair::new(&HairParams::default());
+        model_case!("ChiangHair::sample", model, sample_parameters(), ResultType::Scalars, inputs, |m, x| {
+            let s = m.sample(v3(x), x[3], numbers(&x[4..]));
             [of_v3(s.wi), s.value.to_vec(), vec![s.pdf]].concat()
         });
     }
 
     far_field [
         "ChiangFarField::new", "ChiangFarField::near_field", "ChiangFarField::azimuthal",
-        "ChiangFarField::eval", "ChiangFarField::eval_lobes", "ChiangFarField::pdf"
+        "ChiangFarField::eval", "ChiangFarField::eval_lobes", "ChiangFarField::pdf",
+        "ChiangFarField::lobe_names", "ChiangFarField::uses_offset",
+        "ChiangFarField::with_uniforms", "Query::far"
     ] {
         // The rule's nodes are folded into the shader as constants: one trace per node count
         // (1 node and a small rule keep the WGSL short; the loop is the same for more).
         for nodes in [1, 4] {
             let rule = FarFieldRule::gauss_legendre(nodes).unwrap();
-            case!(format!("ChiangFarField::eval({nodes} nodes)"), chiang_rows(), |x| {
-                let ff = ChiangFarField::new(chiang(x), &rule);
-                let (wi, wo) = (v3(&x[MAT..]), v3(&x[MAT + 3..]));
-                let a = local_fibre_angles(wi, wo);
+            let model = ChiangFarField::new(&HairParams::default(), &rule);
+            assert!(trace_eval(&model).to_wgsl("far").contains("wo: vec3<f32>) -> vec3<f32>"));
+            let name = format!("ChiangFarField::eval({nodes} nodes)");
+            model_case!(name, model, query_parameters(false), ResultType::Scalars, rows(|g| [g.hair(), g.pair()].concat()), |ff, x| {
+                let q = Query::far(v3(x), v3(&x[3..]));
+                let a = local_fibre_angles(q.wi, q.wo);
                 let (an, wn) = ff.azimuthal(a.sin_theta_o, a.cos_theta_o, a.phi);
+                let flags = [ff.lobe_names().len() as f64, f64::from(u8::from(ff.uses_offset()))];
                 [
-                    ff.eval(wi, wo).to_vec(),
-                    ff.eval_lobes(wi, wo).concat(),
-                    vec![ff.pdf(wi, wo), ff.near_field().eta()],
+                    ff.eval(&q).to_vec(),
+                    ff.eval_lobes(&q).concat(),
+                    vec![ff.pdf(&q), ff.near_field().eta()],
                     an.concat(),
                     wn.to_vec(),
+                    consts(&flags),
                 ]
                 .concat()
             });
         }
+        // The constructor in f32 is the f64 model rounded: the same bits as `instantiate`.
+        let rule = FarFieldRule::gauss_legendre(4).unwrap();
+        let q = Query::far(V3::c(0.0, 1.0, 0.0), V3::c(0.6, 0.0, 0.8));
+        let direct = ChiangFarField::<f32>::new(&HairParams::default(), &rule).eval(&q);
+        let rounded = ChiangFarField::new(&HairParams::default(), &rule).instantiate::<f32>().eval(&q);
+        assert_eq!(direct, rounded);
     }
     far_field_sample ["ChiangFarField::sample"] {
-        // Material, wo, uh, u[0], u[1], uc.
+        // Uniforms, wo, h (ignored), then the four numbers (the last picks the offset node).
         for nodes in [1, 4] {
             let rule = FarFieldRule::gauss_legendre(nodes).unwrap();
-            let inputs = rows(|g| {
-                let rest = [g.pick(&U), g.pick(&U), g.pick(&U), g.pick(&U)];
-                [&g.hair()[..], &g.dir(), &rest].concat()
-            });
-            case!(format!("ChiangFarField::sample({nodes} nodes)"), inputs, |x| {
-                let ff = ChiangFarField::new(chiang(x), &rule);
-                let u = [x[MAT + 4], x[MAT + 5]];
-                let s = ff.sample(v3(&x[MAT..]), u, x[MAT + 6], x[MAT + 3]);
+            let inputs = rows(|g| [&g.hair()[..], &g.dir(), &[g.pick(&SIN)], &g.numbers()].concat());
+            let model = ChiangFarField::new(&HairParams::default(), &rule);
+            let name = format!("ChiangFarField::sample({nodes} nodes)");
+            model_case!(name, model, sample_parameters(), ResultType::Scalars, inputs, |ff, x| {
+                let s = ff.sample(v3(x), x[3], numbers(&x[4..]));
                 [of_v3(s.wi), s.value.to_vec(), vec![s.pdf]].concat()
             });
         }
@@ -959,7 +1107,23 @@ fn scan_public_generic_functions() -> BTreeSet<String> {
             if is_test_only(&i.attrs) {
                 return;
             }
-            let ty = type_name(&i.self_ty);
+            // A trait implemented for a type parameter or an array (`impl<R: Real> Trait for
+            // R`) is named after the trait.
+            let parameters: Vec<String> = i
+                .generics
+                .type_params()
+                .map(|p| p.ident.to_string())
+                .collect();
+            let mut ty = type_name(&i.self_ty);
+            if let Some((_, path, _)) = &i.trait_ {
+                if parameters.contains(&ty) || matches!(*i.self_ty, syn::Type::Array(_)) {
+                    ty = path
+                        .segments
+                        .last()
+                        .map(|s| s.ident.to_string())
+                        .unwrap_or_default();
+                }
+            }
             let generic_impl = bounds_real(&i.generics);
             for item in &i.items {
                 if let syn::ImplItem::Fn(f) = item {
