@@ -2,13 +2,16 @@
 
 use super::*;
 use hairmath::models::{
-    gerard_attenuation, gerard_eq8_trt_corrected, gerard_eq8_trt_printed, gerard_hg_g,
-    hg_g_normalised, GERARD_K_TRT, GERARD_K_TT,
+    d_karis, gerard_attenuation, gerard_eq8_trt_corrected, gerard_eq8_trt_printed, gerard_hg_g,
+    h_tt_karis, hg_g_normalised, inverse_eta_prime_karis, scaled_eta_prime_karis,
+    EtaPrimeCoefficients, ExpCosCoefficients, HTtCoefficients, GERARD_K_TRT, GERARD_K_TT,
 };
 use std::f64::consts::FRAC_PI_4;
 
 /// Absorption exponents k: none, Gerard's 4 and 11/2, and the largest the fits search (16).
 const K: Arg = arg(0.0, 16.0, &[0.0, GERARD_K_TT, GERARD_K_TRT, 16.0]);
+/// `a = 1/eta'` of Karis' h_TT: 0 (grazing), 1/1.55, and just below 1 (eta' near 1).
+const INVERSE_ETA_PRIME: Arg = arg(0.0, 0.9999, &[0.0, 1.0 / 1.55, 0.9999]);
 
 traced_tests! {
     lobe_hg_g_of_beta ["gerard_hg_g", "hg_g_normalised"] {
@@ -26,5 +29,41 @@ traced_tests! {
         case!("gerard_eq8_trt", scalars(&[ETA]), |x| {
             vec![gerard_eq8_trt_printed(x[0]), gerard_eq8_trt_corrected(x[0])]
         });
+    }
+
+    // Karis' coefficients are per-shader constants folded into the WGSL: one trace per set.
+    karis_eta_prime ["scaled_eta_prime_karis", "inverse_eta_prime_karis"] {
+        // cos theta_d in [0, 1], grazing (0) and normal (1) included.
+        for (name, c) in [
+            ("published", EtaPrimeCoefficients::PUBLISHED),
+            ("refit", EtaPrimeCoefficients::REFIT),
+        ] {
+            case!(format!("karis eta' ({name})"), scalars(&[UNIT]), |x| {
+                vec![scaled_eta_prime_karis(x[0], c), inverse_eta_prime_karis(x[0], c)]
+            });
+        }
+    }
+    karis_d ["d_karis"] {
+        // phi = 0 and +-pi, the lobes' peaks.
+        for (name, c) in [
+            ("published TT", ExpCosCoefficients::PUBLISHED_D_TT),
+            ("published TRT", ExpCosCoefficients::PUBLISHED_D_TRT),
+            ("refit TT", ExpCosCoefficients::REFIT_D_TT),
+            ("refit TRT", ExpCosCoefficients::REFIT_D_TRT),
+        ] {
+            case!(format!("d_karis ({name})"), scalars(&[ANGLE]), |x| vec![d_karis(x[0], c)]);
+        }
+    }
+    karis_h_tt ["h_tt_karis"] {
+        for (name, c) in [("published", HTtCoefficients::PUBLISHED), ("refit", HTtCoefficients::REFIT)] {
+            case!(format!("h_tt_karis ({name})"), scalars(&[INVERSE_ETA_PRIME, ANGLE]), |x| {
+                vec![h_tt_karis(x[0], x[1], c)]
+            });
+            // As a shader chains them: a = 1/eta' from cos theta_d (grazing gives a = 0).
+            let eta_prime = EtaPrimeCoefficients::PUBLISHED;
+            case!(format!("h_tt_karis of eta' ({name})"), scalars(&[UNIT, ANGLE]), |x| {
+                vec![h_tt_karis(inverse_eta_prime_karis(x[0], eta_prime), x[1], c)]
+            });
+        }
     }
 }
