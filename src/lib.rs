@@ -10,6 +10,7 @@ pub mod fresnel;
 pub mod geometry;
 pub mod lobe;
 pub mod lut;
+pub mod models;
 pub mod params;
 pub mod quadrature;
 pub mod real;

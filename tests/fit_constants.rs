@@ -6,7 +6,7 @@
 use hairmath::fit::generate::{all_fits, constants_source};
 use hairmath::fit::FitSettings;
 
-const COMMITTED: &str = include_str!("../src/fit/constants.rs");
+const COMMITTED: &str = include_str!("../src/models/constants.rs");
 
 #[test]
 fn committed_constants_are_up_to_date() {
@@ -21,9 +21,9 @@ fn committed_constants_are_up_to_date() {
             .position(|(a, b)| a != b)
             .map_or(fresh.lines().count().min(COMMITTED.lines().count()), |i| i);
         panic!(
-            "src/fit/constants.rs is out of date (first difference at line {}); the fresh text \
+            "src/models/constants.rs is out of date (first difference at line {}); the fresh text \
              is in {}. Regenerate with `cargo run --release -- fit --write-constants \
-             src/fit/constants.rs`.",
+             src/models/constants.rs`.",
             line + 1,
             path.display()
         );

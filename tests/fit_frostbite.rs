@@ -8,6 +8,7 @@ use hairmath::azimuthal::{exit_angle_of_offset, trimmed_logistic};
 use hairmath::bcsdf::logistic_scale;
 use hairmath::fit::frostbite::*;
 use hairmath::fit::{FitError, FitSettings};
+use hairmath::models::{offset_attenuation, tt_gaussian, Transmitted};
 use hairmath::real::wrap_angle;
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -195,7 +196,10 @@ fn mean_attenuation_matches_a_brute_force_sum_in_h() {
             let n = 1 << 20;
             let dh = 1.0 / n as f64;
             let brute: f64 = (0..n)
-                .map(|k| offset_attenuation(path, (k as f64 + 0.5) * dh, sigma_a, theta, ETA))
+                .map(|k| {
+                    let h = (k as f64 + 0.5) * dh;
+                    offset_attenuation(path, h, sigma_a, theta.sin(), theta.cos(), ETA)
+                })
                 .sum::<f64>()
                 * dh;
             let e = mean_attenuation(path, sigma_a, theta, ETA);
@@ -232,7 +236,7 @@ fn offset_refit_recovers_a_known_offset() {
             ETA,
             &ATTENUATION_SIGMA_A,
             &frostbite_theta_d(),
-            |s, t| offset_attenuation(path, h, s, t, ETA),
+            |s, t| offset_attenuation(path, h, s, t.sin(), t.cos(), ETA),
         )
         .unwrap();
         let run = problem.refit().unwrap();

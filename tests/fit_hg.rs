@@ -4,13 +4,14 @@
 
 #![cfg(feature = "fit")]
 
-use hairmath::fit::constants::{
+use hairmath::fit::hg::*;
+use hairmath::fit::FitError;
+use hairmath::lobe::{hg_gerard_printed, HenyeyGreenstein};
+use hairmath::models::constants::{
     GERARD_HG_G_LITERAL, GERARD_HG_G_LITERAL_POLYNOMIAL_MAX_ERROR,
     HG_G_NORMALISED_POLYNOMIAL_MAX_ERROR,
 };
-use hairmath::fit::hg::*;
-use hairmath::fit::FitError;
-use hairmath::lobe::{gerard_hg_g, hg_g_normalised, hg_gerard_printed, HenyeyGreenstein};
+use hairmath::models::{gerard_hg_g, hg_g_normalised};
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 

@@ -7,6 +7,7 @@ use hairmath::azimuthal::exit_angle_of_offset;
 use hairmath::fit::karis::*;
 use hairmath::fit::{is_coordinate_minimum, FitError, FitSettings};
 use hairmath::fresnel::bravais_eta_perpendicular;
+use hairmath::models::h_tt_karis;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 fn converged_text() -> &'static str {
@@ -215,7 +216,7 @@ fn exact_h_tt_matches_root_solving() {
 fn h_tt_refit_recovers_synthetic_coefficients() {
     let s = FitSettings::default();
     let c0 = [0.55, 0.9];
-    let c = fit_h_tt_to(&s, |a, phi| h_tt_karis(a, phi, c0)).unwrap();
+    let c = fit_h_tt_to(&s, |a, phi| h_tt_karis(a, phi, c0.into())).unwrap();
     println!("h_TT synthetic {c0:?} -> {c:?}");
     assert!(
         (c[0] - c0[0]).abs() < 1e-12 && (c[1] - c0[1]).abs() < 1e-12,

@@ -2,7 +2,9 @@
 //!
 //! Gerard (Fast Real-Time Shading for Polygonal Hair) scales the TT and TRT lobes by
 //! `exp(-4 sigma_a)` (eqs. 8 and 12) and `exp(-11/2 sigma_a)` (eq. 13), and prints eq. 8's TRT
-//! exponent as `8 sigma_a (1 - 3 / (2 eta^2))`. They come from Marschner et al. 2003's exponent
+//! exponent as `8 sigma_a (1 - 3 / (2 eta^2))`; these closed forms are in [`crate::models`]
+//! ([`gerard_attenuation`], [`GERARD_K_TT`], [`GERARD_K_TRT`], [`gerard_eq8_trt_printed`],
+//! [`gerard_eq8_trt_corrected`]), and this module measures and refits them. They come from Marschner et al. 2003's exponent
 //! `2 sigma_a (1 + cos 2 gamma_t) / cos theta_t = 4 sigma_a cos^2(gamma_t) / cos theta_t` per
 //! internal segment ([`PathLength::Marschner2003`]). At theta = 0 Snell's law in the normal plane
 //! gives `sin gamma_t = h / eta`, so p segments at offset h carry
@@ -27,6 +29,9 @@ use crate::error::ParamError;
 use crate::fit::{
     minimize_scalar, ConstValue, ConstantFit, FitError, FitOutput, FitSettings, GeneratedConst,
     Minimum,
+};
+use crate::models::{
+    gerard_attenuation, gerard_eq8_trt_corrected, gerard_eq8_trt_printed, GERARD_K_TRT, GERARD_K_TT,
 };
 use crate::quadrature::gauss_legendre;
 use core::f64::consts::FRAC_PI_2;
@@ -61,11 +66,12 @@ impl Lobe {
         }
     }
 
-    /// Gerard's exponent: 4 for TT (eq. 12), 11/2 for TRT (eq. 13).
+    /// Gerard's exponent: 4 for TT (eq. 12), 11/2 for TRT (eq. 13) ([`GERARD_K_TT`],
+    /// [`GERARD_K_TRT`]).
     pub fn gerard_k(self) -> f64 {
         match self {
-            Lobe::Tt => 4.0,
-            Lobe::Trt => 5.5,
+            Lobe::Tt => GERARD_K_TT,
+            Lobe::Trt => GERARD_K_TRT,
         }
     }
 
@@ -80,17 +86,6 @@ impl Lobe {
             }
         }
     }
-}
-
-/// Gerard's eq. 8 TRT exponent as printed, `8 (1 - 3 / (2 eta^2))` (3.0052 at eta = 1.55).
-pub fn gerard_eq8_trt_printed(eta: f64) -> f64 {
-    8.0 * (1.0 - 3.0 / (2.0 * eta * eta))
-}
-
-/// Gerard's eq. 8 TRT exponent corrected, `8 (1 - 3 / (4 eta^2))` (5.5026 at eta = 1.55):
-/// Marschner's two-segment exponent at h = sqrt(3)/2, theta = 0 (module documentation).
-pub fn gerard_eq8_trt_corrected(eta: f64) -> f64 {
-    8.0 * (1.0 - 3.0 / (4.0 * eta * eta))
 }
 
 /// The directions of the incident ray over which the lobe energy is taken.
@@ -293,15 +288,15 @@ fn loss_nodes() -> Vec<(f64, f64)> {
 }
 
 /// The least-squares loss of exponent k: the mean over sigma_a in [0, 2] of
-/// `(exp(-k sigma_a) - r(sigma_a))^2`, by the Gauss-Legendre rule of `samples`. Its square root
-/// is the RMS error of the approximation.
+/// `(exp(-k sigma_a) - r(sigma_a))^2` ([`gerard_attenuation`]), by the Gauss-Legendre rule of
+/// `samples`. Its square root is the RMS error of the approximation.
 pub fn ratio_loss(k: f64, samples: &RatioSamples) -> f64 {
     samples
         .sigma_a
         .iter()
         .zip(&samples.weight)
         .zip(&samples.ratio)
-        .map(|((s, w), r)| w * ((-k * s).exp() - r).powi(2))
+        .map(|((&s, w), r)| w * (gerard_attenuation(k, s) - r).powi(2))
         .sum()
 }
 
@@ -403,9 +398,9 @@ pub struct ApproximationError {
 }
 
 impl ApproximationError {
-    /// Measures `exp(-k sigma_a)` against `reference`.
+    /// Measures `exp(-k sigma_a)` ([`gerard_attenuation`]) against `reference`.
     pub fn measure(label: &str, k: f64, reference: &RatioReference) -> Self {
-        let approx = |s: f64| (-k * s).exp();
+        let approx = |s: f64| gerard_attenuation(k, s);
         let max_abs = reference
             .grid
             .iter()
@@ -460,9 +455,9 @@ fn fit_key(lobe: Lobe, path: PathLength, directions: Directions) -> String {
 /// The approximations each lobe is compared with: (label, k).
 fn gerard_exponents(lobe: Lobe, eta: f64) -> Vec<(&'static str, f64)> {
     match lobe {
-        Lobe::Tt => vec![("Gerard eq. 12, 4", 4.0)],
+        Lobe::Tt => vec![("Gerard eq. 12, 4", GERARD_K_TT)],
         Lobe::Trt => vec![
-            ("Gerard eq. 13, 11/2", 5.5),
+            ("Gerard eq. 13, 11/2", GERARD_K_TRT),
             (
                 "Gerard eq. 8 printed, 8(1-3/(2eta^2))",
                 gerard_eq8_trt_printed(eta),

@@ -11,6 +11,9 @@
 //! - the TT and TRT attenuations (slides 17, 20, 21) by `A_p` at one offset, h = 0 for TT and
 //!   h = sqrt(3)/2 for TRT, instead of the h-average ([`AttenuationProblem`]).
 //!
+//! Both closed forms are in [`crate::models`] ([`tt_gaussian`], [`offset_attenuation`]); this
+//! module holds the references they approximate, the fits and the error tables.
+//!
 //! Conventions are hairmath's (README, "Conventions"): `phi = phi_i - phi_o` as in pbrt, so the
 //! TT lobe peaks at |phi| = pi; sigma_a per unit fibre radius with the exact chord
 //! `2 cos(gamma_t) / cos(theta_t)`; Chiang's attenuation ([`crate::azimuthal::attenuations`]) with the entry
@@ -21,10 +24,10 @@ use super::{
     ConstantFit, FitError, FitOutput, FitSettings, GeneratedConst, Minimum,
 };
 use crate::absorption::Absorption;
-use crate::absorption::PathLength;
-use crate::azimuthal::{attenuations_at_offset, exit_angle_of_offset, trimmed_logistic};
+use crate::azimuthal::{exit_angle_of_offset, trimmed_logistic};
 use crate::bcsdf::logistic_scale;
 use crate::error::ParamError;
+use crate::models::{offset_attenuation, tt_gaussian, Transmitted};
 use crate::params::AzimuthalRoughness;
 use crate::quadrature::{gauss_legendre, integrate};
 use crate::real::wrap_angle;
@@ -44,10 +47,12 @@ pub const TT_PANELS: usize = 48;
 pub const ATTENUATION_SIGMA_A: [f64; 7] = [0.0, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0];
 /// theta_d axis of the attenuation error tables, degrees.
 pub const ATTENUATION_THETA_D_DEG: [f64; 7] = [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 85.0];
-/// Frostbite's TT offset (slide 20): `A_TT` evaluated at h = 0.
-pub const PUBLISHED_TT_OFFSET_H: f64 = 0.0;
-/// Frostbite's TRT offset (slide 21, Karis 2016's constant): `A_TRT` at h = sqrt(3)/2.
-pub const PUBLISHED_TRT_OFFSET_H: f64 = 0.866_025_403_784_438_6;
+/// Frostbite's TT offset (slide 20): `A_TT` evaluated at h = 0
+/// ([`Transmitted::published_offset`]).
+pub const PUBLISHED_TT_OFFSET_H: f64 = Transmitted::Tt.published_offset();
+/// Frostbite's TRT offset (slide 21, Karis 2016's constant): `A_TRT` at h = sqrt(3)/2
+/// ([`Transmitted::published_offset`]).
+pub const PUBLISHED_TRT_OFFSET_H: f64 = Transmitted::Trt.published_offset();
 
 const SOURCE: &str = "Tafuri 2019, Strand-based Hair Rendering in Frostbite (SIGGRAPH course)";
 
@@ -144,12 +149,6 @@ impl TtSlice {
 // The per-slice Gaussian
 // ---------------------------------------------------------------------------------------------
 
-/// Frostbite's per-slice model of D_TT (slide 19): `a exp(-b (|phi| - pi)^2)`, phi in
-/// [-pi, pi].
-pub fn tt_gaussian(phi: f64, a: f64, b: f64) -> f64 {
-    a * (-b * (phi.abs() - PI).powi(2)).exp()
-}
-
 /// The Gaussian fitted to one slice, and its error relative to the slice's peak.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GaussianSliceFit {
@@ -167,7 +166,8 @@ pub struct GaussianSliceFit {
     pub run: Minimum,
 }
 
-/// The least-squares loss of the Gaussian fit: mean squared residual divided by `peak^2`.
+/// The least-squares loss of the Gaussian fit ([`tt_gaussian`]): mean squared residual divided
+/// by `peak^2`.
 pub fn gaussian_loss(phi: &[f64], values: &[f64], peak: f64, params: &[f64]) -> f64 {
     let sum: f64 = phi
         .iter()
@@ -331,47 +331,14 @@ fn worst_cell(slices: &[Vec<GaussianSliceFit>]) -> (usize, usize) {
 // Single-offset attenuations
 // ---------------------------------------------------------------------------------------------
 
-/// A transmitted lobe whose attenuation Frostbite evaluates at a single offset.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Transmitted {
-    /// p = 1.
-    Tt,
-    /// p = 2.
-    Trt,
-}
-
-impl Transmitted {
-    /// The path's index p.
-    pub fn p(self) -> usize {
-        match self {
-            Transmitted::Tt => 1,
-            Transmitted::Trt => 2,
-        }
-    }
-
-    /// "TT" or "TRT".
-    pub fn name(self) -> &'static str {
-        match self {
-            Transmitted::Tt => "TT",
-            Transmitted::Trt => "TRT",
-        }
-    }
-}
-
-/// Chiang's attenuation `A_p(h)` (Chiang et al. 2016, eqs. 3 and 6; [`attenuations_at_offset`]) of a ray
-/// inclined at `theta` (radians) with absorption `sigma_a` per unit radius and the chord
-/// transmittance `exp(-sigma_a 2 cos(gamma_t) / cos(theta_t))` ([`crate::absorption::segment_transmittance`]).
-pub fn offset_attenuation(path: Transmitted, h: f64, sigma_a: f64, theta: f64, eta: f64) -> f64 {
-    let (sin_o, cos_o) = theta.sin_cos();
-    attenuations_at_offset(h, sin_o, cos_o, eta, sigma_a, PathLength::Chord)[path.p()]
-}
-
-/// The h-average `E_p = 1/2 int_{-1}^{1} A_p(h) dh` that the single offset replaces, as
+/// The h-average `E_p = 1/2 int_{-1}^{1} A_p(h) dh` that the single offset
+/// ([`offset_attenuation`]) replaces, for a ray inclined at `theta` (radians), as
 /// `int_0^{pi/2} A_p(sin gamma) cos(gamma) dgamma` (A_p is even in h; the integrand is analytic
 /// in gamma) with 8 panels of the 16-point Gauss-Legendre rule.
 pub fn mean_attenuation(path: Transmitted, sigma_a: f64, theta: f64, eta: f64) -> f64 {
+    let (sin_theta, cos_theta) = theta.sin_cos();
     integrate(&gauss_legendre(16), 8, 0.0, FRAC_PI_2, |g| {
-        offset_attenuation(path, g.sin(), sigma_a, theta, eta) * g.cos()
+        offset_attenuation(path, g.sin(), sigma_a, sin_theta, cos_theta, eta) * g.cos()
     })
 }
 
@@ -488,7 +455,9 @@ impl AttenuationProblem {
                 self.theta_d
                     .iter()
                     .zip(row)
-                    .map(|(&t, &e)| offset_attenuation(self.path, h, s, t, self.eta) / e - 1.0)
+                    .map(|(&t, &e)| {
+                        offset_attenuation(self.path, h, s, t.sin(), t.cos(), self.eta) / e - 1.0
+                    })
                     .collect()
             })
             .collect();

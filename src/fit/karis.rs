@@ -1,6 +1,8 @@
 //! Karis' closed forms (Unreal Engine 4, "Physically Based Hair Shading in Unreal", 2016;
 //! `HairBsdf.ush`), each measured against its exact reference and refitted under one stated
-//! metric:
+//! metric. The closed forms and their coefficients are in [`crate::models`]
+//! ([`scaled_eta_prime_karis`], [`d_karis`], [`h_tt_karis`]); this module holds the exact
+//! references, the metrics and the fits:
 //!
 //! - Bravais' index `eta' ~ a / cos theta_d + b cos theta_d` (published a = 1.19, b = 0.36,
 //!   claimed "error < 0.68%"): maximum relative error over theta_d in [0, 90 deg) with the
@@ -19,22 +21,39 @@ use super::{
 use crate::azimuthal::logistic;
 use crate::error::ParamError;
 use crate::fresnel::bravais_eta_perpendicular;
+use crate::models::{
+    d_karis, h_tt_karis, scaled_eta_prime_karis, EtaPrimeCoefficients, ExpCosCoefficients,
+    HTtCoefficients,
+};
 use crate::quadrature::{gauss_legendre, integrate};
 use core::f64::consts::{FRAC_PI_2, PI};
 
 /// Where every published constant comes from.
 const SOURCE: &str = "Karis 2016 (UE4 HairBsdf.ush)";
 
-/// Karis' published `(a, b)` of `eta' ~ a / cos theta_d + b cos theta_d`.
-pub const PUBLISHED_ETA_PRIME: [f64; 2] = [1.19, 0.36];
+/// Karis' published `(a, b)` of `eta' ~ a / cos theta_d + b cos theta_d`
+/// ([`EtaPrimeCoefficients::PUBLISHED`] as an array, the fits' parameter vector).
+pub const PUBLISHED_ETA_PRIME: [f64; 2] = [
+    EtaPrimeCoefficients::PUBLISHED.a,
+    EtaPrimeCoefficients::PUBLISHED.b,
+];
 /// Karis' claimed bound on the relative error of `eta'`: "error < 0.68%".
 pub const CLAIMED_ETA_PRIME_ERROR: f64 = 0.0068;
-/// Karis' published `(a, b)` of `D_TT ~ exp(a cos phi + b)`.
-pub const PUBLISHED_D_TT: [f64; 2] = [-3.65, -3.98];
-/// Karis' published `(a, b)` of `D_TRT ~ exp(a cos phi + b)`.
-pub const PUBLISHED_D_TRT: [f64; 2] = [17.0, -16.78];
-/// Karis' published `(c1, c2)` of `h_TT ~ (1 + a (c1 - c2 cos phi)) cos(phi/2)`.
-pub const PUBLISHED_H_TT: [f64; 2] = [0.6, 0.8];
+/// Karis' published `(a, b)` of `D_TT ~ exp(a cos phi + b)`
+/// ([`ExpCosCoefficients::PUBLISHED_D_TT`] as an array).
+pub const PUBLISHED_D_TT: [f64; 2] = [
+    ExpCosCoefficients::PUBLISHED_D_TT.a,
+    ExpCosCoefficients::PUBLISHED_D_TT.b,
+];
+/// Karis' published `(a, b)` of `D_TRT ~ exp(a cos phi + b)`
+/// ([`ExpCosCoefficients::PUBLISHED_D_TRT`] as an array).
+pub const PUBLISHED_D_TRT: [f64; 2] = [
+    ExpCosCoefficients::PUBLISHED_D_TRT.a,
+    ExpCosCoefficients::PUBLISHED_D_TRT.b,
+];
+/// Karis' published `(c1, c2)` of `h_TT ~ (1 + a (c1 - c2 cos phi)) cos(phi/2)`
+/// ([`HTtCoefficients::PUBLISHED`] as an array).
+pub const PUBLISHED_H_TT: [f64; 2] = [HTtCoefficients::PUBLISHED.c1, HTtCoefficients::PUBLISHED.c2];
 
 /// Logistic scale of Karis' `D_TT = D(phi, 0.35, pi)`.
 pub const D_TT_SCALE: f64 = 0.35;
@@ -74,9 +93,10 @@ fn scaled_bravais(eta: f64, x: f64) -> f64 {
 }
 
 /// `|(a + b x^2) / reference(x) - 1|`, the relative error of `a / x + b x` against
-/// `reference(x) / x`, where `reference(x) = x eta'(x)` with x = cos theta_d.
+/// `reference(x) / x`, where `reference(x) = x eta'(x)` with x = cos theta_d: both sides
+/// multiplied by x, Karis' side by [`scaled_eta_prime_karis`].
 fn scaled_relative_error(reference: &impl Fn(f64) -> f64, a: f64, b: f64, x: f64) -> f64 {
-    ((a + b * x * x) / reference(x) - 1.0).abs()
+    (scaled_eta_prime_karis(x, EtaPrimeCoefficients { a, b }) / reference(x) - 1.0).abs()
 }
 
 /// x = cos theta_d of node `i` of the uniform theta_d grid on [0, 90 deg]; the last node is
@@ -117,7 +137,9 @@ pub fn eta_prime_relative_error(
         (0.0..FRAC_PI_2).contains(&t)
     })?;
     let exact = bravais_eta_perpendicular(eta, theta_d.sin());
-    Ok(((a / theta_d.cos() + b * theta_d.cos()) / exact - 1.0).abs())
+    let cos_theta_d = theta_d.cos();
+    let approx = scaled_eta_prime_karis(cos_theta_d, EtaPrimeCoefficients { a, b }) / cos_theta_d;
+    Ok((approx / exact - 1.0).abs())
 }
 
 /// The metric of Karis' `eta' ~ a / cos theta_d + b cos theta_d` (Karis 2016, after Marschner
@@ -254,11 +276,12 @@ pub fn d_trt_reference(phi: f64) -> f64 {
 }
 
 /// The metric of the `D` fits: `sqrt(1/pi int_0^pi (exp(a cos phi + b) - reference(phi))^2
-/// dphi) / peak`, the RMS error over phi in [0, pi] relative to the reference's peak, by 64
-/// panels of the 16-point Gauss-Legendre rule.
+/// dphi) / peak` ([`d_karis`]), the RMS error over phi in [0, pi] relative to the reference's
+/// peak, by 64 panels of the 16-point Gauss-Legendre rule.
 pub fn exp_cos_rms_error(reference: impl Fn(f64) -> f64, peak: f64, a: f64, b: f64) -> f64 {
     let rule = gauss_legendre(16);
-    let square = |phi: f64| ((a * phi.cos() + b).exp() - reference(phi)).powi(2);
+    let c = ExpCosCoefficients { a, b };
+    let square = |phi: f64| (d_karis(phi, c) - reference(phi)).powi(2);
     (integrate(&rule, D_PANELS, 0.0, PI, square) / PI).sqrt() / peak
 }
 
@@ -406,13 +429,6 @@ fn signed_h_tt(a: f64, phi: f64) -> f64 {
     (0.5 * phi).cos().copysign(phi) / root
 }
 
-/// Karis' approximation `h_TT ~ (1 + a (c1 - c2 cos phi)) cos(phi/2)`, a = 1/eta' (Karis 2016;
-/// `HairBsdf.ush` with c1 = 0.6, c2 = 0.8). It approximates |h_TT| ([`h_tt_exact`]), which is
-/// even in phi.
-pub fn h_tt_karis(a: f64, phi: f64, c: [f64; 2]) -> f64 {
-    (1.0 + a * (c[0] - c[1] * phi.cos())) * (0.5 * phi).cos()
-}
-
 /// The `h_TT` metric's grid: (a = 1/eta', phi) on 81 uniform theta_d in [0, 80 deg] (eta' from
 /// `eta`) times 201 uniform phi in [2 asin a, pi] (the positive half: the forms are even).
 fn h_tt_grid(eta: f64) -> Vec<(f64, f64)> {
@@ -442,6 +458,7 @@ pub struct HTtError {
 /// [`h_tt_errors`].
 fn h_tt_errors_against(reference: &impl Fn(f64, f64) -> f64, eta: f64, c: [f64; 2]) -> HTtError {
     let grid = h_tt_grid(eta);
+    let c = HTtCoefficients::from(c);
     let (sum, max) = grid.iter().fold((0.0, 0.0_f64), |(sum, max), &(a, phi)| {
         let e = (h_tt_karis(a, phi, c) - reference(a, phi)).abs();
         (sum + e * e, max.max(e))
@@ -469,7 +486,8 @@ pub fn h_tt_errors(settings: &FitSettings, c1: f64, c2: f64) -> Result<HTtError,
 /// Linear least-squares fit of `(c1, c2)` in `(1 + a (c1 - c2 cos phi)) cos(phi/2)` to
 /// `reference(a, phi)` on the grid of [`h_tt_errors`] for `settings.eta` (nalgebra SVD): the
 /// residual `reference - cos(phi/2)` against the columns `a cos(phi/2)`, `-a cos phi
-/// cos(phi/2)`, which minimises the RMS of [`h_tt_errors`].
+/// cos(phi/2)`, which minimises the RMS of [`h_tt_errors`]. (The columns are the partial
+/// derivatives of [`h_tt_karis`], which is affine in `(c1, c2)`, not a second evaluator.)
 ///
 /// # Errors
 /// Invalid `settings.eta`; a degenerate design matrix.

@@ -4,14 +4,11 @@
 //! what: Gerard's Henyey-Greenstein g(beta) and absorption exponents, Karis' closed forms,
 //! Frostbite's per-slice Gaussians. Each submodule states what is fitted to what (reference,
 //! metric, domain), refits it with argmin and measures the error of both the published and the
-//! refitted value. The results ship in [`constants`], a generated file that needs none of the
-//! fitting machinery: it is always compiled, while the fitter itself is behind the `fit`
-//! feature (on by default).
+//! refitted value. The closed forms themselves live in [`crate::models`], which this module
+//! calls and never the reverse. The results ship in [`crate::models::constants`], a generated
+//! file that needs none of the fitting machinery: it is always compiled, while the fitter
+//! itself is behind the `fit` feature (on by default).
 
-// Generated text: formatted by its generator, not by rustfmt (tests/fit_constants.rs compares
-// it with a fresh generation).
-#[rustfmt::skip]
-pub mod constants;
 #[cfg(feature = "fit")]
 pub mod absorption_exponent;
 #[cfg(feature = "fit")]
@@ -52,7 +49,7 @@ pub struct ConstantFit {
     pub refit_error: f64,
 }
 
-/// A constant for the generated file [`constants`]: its Rust name, its documentation (what it
+/// A constant for the generated file [`crate::models::constants`]: its Rust name, its documentation (what it
 /// approximates, the metric, the domain and the measured error) and its value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GeneratedConst {
@@ -81,7 +78,7 @@ pub enum ConstValue {
 pub struct FitOutput {
     /// Published against refitted values, with errors.
     pub records: Vec<ConstantFit>,
-    /// Constants for [`constants`].
+    /// Constants for [`crate::models::constants`].
     pub constants: Vec<GeneratedConst>,
 }
 

@@ -1,37 +1,5 @@
 use crate::error::ParamError;
-use crate::fit::constants::{GERARD_HG_G_LITERAL_POLYNOMIAL, HG_G_NORMALISED_POLYNOMIAL};
-use crate::real::{horner, Real};
-
-/// Domain of the g(beta) closed forms, radians: 1 to 45 degrees. Widths outside it are clamped.
-pub const HG_G_BETA_DOMAIN: (f64, f64) = (
-    1.0 * core::f64::consts::PI / 180.0,
-    45.0 * core::f64::consts::PI / 180.0,
-);
-
-/// Gerard's g(beta) for the lobe exactly as he prints it ([`hg_gerard_printed`]): the g whose
-/// printed lobe is closest in L2 over [-pi/2, pi/2] to the unit-area Gaussian of standard
-/// deviation `beta` (radians), as a polynomial in sqrt(beta) fitted to those L2 fits
-/// (`hairmath::fit::hg`; coefficients in `fit::constants::GERARD_HG_G_LITERAL_POLYNOMIAL`).
-/// Within [`crate::fit::constants::GERARD_HG_G_LITERAL_POLYNOMIAL_MAX_ERROR`] (3.9e-4) of the fit for beta in
-/// [1, 45] degrees (tests/fit_hg.rs); beta outside is clamped to that domain. This reading
-/// does not give Gerard's printed 0.865 and 0.578 (README, erratum on g).
-pub fn gerard_hg_g<R: Real>(beta: R) -> R {
-    g_polynomial(beta, &GERARD_HG_G_LITERAL_POLYNOMIAL)
-}
-
-/// g(beta) for the circle-normalised lobe [`HenyeyGreenstein`]: the g whose lobe is closest in
-/// L2 over [-pi, pi] to the unit-area Gaussian of standard deviation `beta` (radians), as a
-/// polynomial in sqrt(beta) (`fit::constants::HG_G_NORMALISED_POLYNOMIAL`), within
-/// [`crate::fit::constants::HG_G_NORMALISED_POLYNOMIAL_MAX_ERROR`] (1.1e-4) of the fit for beta in [1, 45] degrees;
-/// beta outside is clamped.
-pub fn hg_g_normalised<R: Real>(beta: R) -> R {
-    g_polynomial(beta, &HG_G_NORMALISED_POLYNOMIAL)
-}
-
-fn g_polynomial<R: Real>(beta: R, coefficients: &[f64]) -> R {
-    let (lo, hi) = HG_G_BETA_DOMAIN;
-    horner(beta.max(R::c(lo)).min(R::c(hi)).sqrt(), coefficients)
-}
+use crate::real::Real;
 
 /// The Henyey-Greenstein function exactly as Gerard prints it (his eq. 6):
 /// `G = (1 / 4 pi) (1 - g^2) / (1 + g^2 - 2 g cos theta)^(3/2)`.

@@ -1,5 +1,6 @@
 //! Longitudinal scattering lobes M(theta): Marschner's Gaussian, the Henyey-Greenstein lobe as
 //! Gerard uses it, and d'Eon's energy-conserving lobe with its log-space Bessel function.
+//! Gerard's closed forms of the asymmetry g(beta) are in [`crate::models`].
 
 pub mod bessel;
 mod deon;
@@ -8,6 +9,4 @@ mod henyey_greenstein;
 
 pub use deon::{deon_lobe, deon_lobe_sample_cos_theta, DeonLobe};
 pub use gaussian::gaussian_lobe;
-pub use henyey_greenstein::{
-    gerard_hg_g, hg_g_normalised, hg_gerard_printed, HenyeyGreenstein, HG_G_BETA_DOMAIN,
-};
+pub use henyey_greenstein::{hg_gerard_printed, HenyeyGreenstein};

@@ -32,8 +32,8 @@ use hairmath::geometry::{
 };
 use hairmath::lobe::bessel::{i0, i0e_split, log_i0, log_i0e};
 use hairmath::lobe::{
-    deon_lobe, deon_lobe_sample_cos_theta, gaussian_lobe, gerard_hg_g, hg_g_normalised,
-    hg_gerard_printed, DeonLobe, HenyeyGreenstein,
+    deon_lobe, deon_lobe_sample_cos_theta, gaussian_lobe, hg_gerard_printed, DeonLobe,
+    HenyeyGreenstein,
 };
 use hairmath::lut::axis_cell;
 use hairmath::params::{
@@ -45,7 +45,7 @@ use hairmath::sh::basis::{eval_sh, eval_sh_into};
 use hairmath::sh::product::{product, triple_product_integral, ProductPlan};
 use hairmath::sh::rotation::{rotate_band1, rotate_band2, rotate_bands012, rotate_zonal_into};
 use std::collections::BTreeSet;
-use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
 
 /// Inputs per function (at least; special-value combinations come first).
@@ -728,12 +728,6 @@ traced_tests! {
     lobe_hg_gerard_printed ["hg_gerard_printed"] {
         let inputs = scalars(&[HG_G, SIN]);
         case!("hg_gerard_printed", inputs, |x| vec![hg_gerard_printed(x[0], x[1])]);
-    }
-    lobe_hg_g_of_beta ["gerard_hg_g", "hg_g_normalised"] {
-        // Widths inside and outside the closed forms' domain [1, 45] degrees (clamped).
-        const WIDTHS: Arg = arg(0.0, 1.2, &[0.0, 0.017453292, FRAC_PI_4, 1e-6, 3.0]);
-        case!("gerard_hg_g", scalars(&[WIDTHS]), |x| vec![gerard_hg_g(x[0])]);
-        case!("hg_g_normalised", scalars(&[WIDTHS]), |x| vec![hg_g_normalised(x[0])]);
     }
     lobe_henyey_greenstein ["HenyeyGreenstein::eval"] {
         // g is a per-lobe constant folded into the shader: one trace per g.

@@ -22,7 +22,7 @@ pub struct FitArgs {
     #[arg(long)]
     json: bool,
     /// Also write the generated Rust constants file to this path (the repository's copy is
-    /// src/fit/constants.rs, for eta = 1.55).
+    /// src/models/constants.rs, for eta = 1.55).
     #[arg(long)]
     write_constants: Option<PathBuf>,
     /// After the table, print each family's error tables (markdown): the absorption

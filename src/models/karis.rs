@@ -1,0 +1,157 @@
+//! Karis 2016, "Physically Based Hair Shading in Unreal" (SIGGRAPH course; Unreal Engine 4's
+//! `HairBsdf.ush`): the closed forms of Bravais' index, of the TT and TRT azimuthal
+//! distributions and of the TT offset, with Karis' published coefficients and hairmath's
+//! refits ([`super::constants`]).
+//!
+//! The references they approximate, the error metrics and the refits are in
+//! `hairmath::fit::karis`; the errors quoted here are its measurements at eta = 1.55.
+
+use super::constants::{KARIS_D_TRT, KARIS_D_TT, KARIS_ETA_PRIME, KARIS_H_TT};
+use crate::real::Real;
+
+/// The coefficients `(a, b)` of Karis' Bravais index `eta' ~ a / cos theta_d + b cos theta_d`
+/// ([`scaled_eta_prime_karis`], [`inverse_eta_prime_karis`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EtaPrimeCoefficients {
+    /// The coefficient of `1 / cos theta_d`.
+    pub a: f64,
+    /// The coefficient of `cos theta_d`.
+    pub b: f64,
+}
+
+impl EtaPrimeCoefficients {
+    /// Karis' published `a = 1.19`, `b = 0.36` (for eta = 1.55), with his claimed "error <
+    /// 0.68%". Measured: maximum relative error 6.75e-3 over theta_d in [0, 90 deg) (worst
+    /// near 45 degrees; 4.8e-3 at the grazing limit), so the claim holds.
+    pub const PUBLISHED: Self = Self { a: 1.19, b: 0.36 };
+    /// hairmath's minimax refit [`KARIS_ETA_PRIME`] (eta = 1.55): maximum relative error
+    /// 4.51e-3 over theta_d in [0, 90 deg).
+    pub const REFIT: Self = Self {
+        a: KARIS_ETA_PRIME[0],
+        b: KARIS_ETA_PRIME[1],
+    };
+}
+
+impl From<[f64; 2]> for EtaPrimeCoefficients {
+    /// `[a, b]`, the order of Karis' paper and of [`KARIS_ETA_PRIME`].
+    fn from([a, b]: [f64; 2]) -> Self {
+        Self { a, b }
+    }
+}
+
+/// The coefficients `(a, b)` of Karis' azimuthal distributions `D ~ exp(a cos phi + b)`
+/// ([`d_karis`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExpCosCoefficients {
+    /// The coefficient of `cos phi`.
+    pub a: f64,
+    /// The constant term of the exponent.
+    pub b: f64,
+}
+
+impl ExpCosCoefficients {
+    /// Karis' published `D_TT ~ exp(-3.65 cos phi - 3.98)`. Measured against Pixar's logistic
+    /// `D(phi, 0.35, pi)`: RMS error over phi in [0, pi] 1.32e-2 of the reference's peak.
+    pub const PUBLISHED_D_TT: Self = Self { a: -3.65, b: -3.98 };
+    /// Karis' published `D_TRT ~ exp(17 cos phi - 16.78)`. Measured against
+    /// `3/4 D(phi, 0.15, 0)`: RMS error over phi in [0, pi] 1.43e-2 of the reference's peak.
+    pub const PUBLISHED_D_TRT: Self = Self { a: 17.0, b: -16.78 };
+    /// hairmath's least-squares refit of `D_TT`, [`KARIS_D_TT`]: RMS error 9.96e-3 of the peak.
+    pub const REFIT_D_TT: Self = Self {
+        a: KARIS_D_TT[0],
+        b: KARIS_D_TT[1],
+    };
+    /// hairmath's least-squares refit of `D_TRT`, [`KARIS_D_TRT`]: RMS error 1.04e-2 of the
+    /// peak.
+    pub const REFIT_D_TRT: Self = Self {
+        a: KARIS_D_TRT[0],
+        b: KARIS_D_TRT[1],
+    };
+}
+
+impl From<[f64; 2]> for ExpCosCoefficients {
+    /// `[a, b]`, the order of Karis' paper and of [`KARIS_D_TT`] and [`KARIS_D_TRT`].
+    fn from([a, b]: [f64; 2]) -> Self {
+        Self { a, b }
+    }
+}
+
+/// The coefficients `(c1, c2)` of Karis' TT offset `h_TT ~ (1 + a (c1 - c2 cos phi))
+/// cos(phi/2)` ([`h_tt_karis`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HTtCoefficients {
+    /// The constant inside the bracket.
+    pub c1: f64,
+    /// The coefficient of `cos phi` inside the bracket.
+    pub c2: f64,
+}
+
+impl HTtCoefficients {
+    /// Karis' published `c1 = 0.6`, `c2 = 0.8` (`HairBsdf.ush`). Measured against the exact
+    /// offset over theta_d in [0, 80 deg] and the azimuths where it exists: RMS error 6.65e-2,
+    /// maximum 1.54e-1.
+    pub const PUBLISHED: Self = Self { c1: 0.6, c2: 0.8 };
+    /// hairmath's linear least-squares refit [`KARIS_H_TT`] (eta = 1.55): RMS error 3.70e-2,
+    /// maximum 8.89e-2.
+    pub const REFIT: Self = Self {
+        c1: KARIS_H_TT[0],
+        c2: KARIS_H_TT[1],
+    };
+}
+
+impl From<[f64; 2]> for HTtCoefficients {
+    /// `[c1, c2]`, the order of Karis' paper and of [`KARIS_H_TT`].
+    fn from([c1, c2]: [f64; 2]) -> Self {
+        Self { c1, c2 }
+    }
+}
+
+/// Karis' Bravais index `eta' ~ a / cos theta_d + b cos theta_d` (Karis 2016, after Marschner
+/// et al. 2003's `eta' = sqrt(eta^2 - sin^2 theta_d) / cos theta_d`, appendix B), multiplied by
+/// `cos theta_d`: `cos theta_d * eta' ~ a + b cos^2 theta_d`, for `cos_theta_d` in [0, 1].
+///
+/// The scaled form is what stays finite: at grazing (`cos theta_d = 0`) eta' itself diverges,
+/// as Bravais' exact index does, while `cos theta_d * eta'` tends to `a` (the exact value is
+/// `sqrt(eta^2 - 1)`, so the relative error at grazing is `a / sqrt(eta^2 - 1) - 1`, 4.8e-3 for
+/// the published constants at eta = 1.55). Divide by `cos theta_d` where it is known to be
+/// positive, or use [`inverse_eta_prime_karis`]. The relative error is that of eta' (see
+/// [`EtaPrimeCoefficients::PUBLISHED`] and [`EtaPrimeCoefficients::REFIT`]).
+pub fn scaled_eta_prime_karis<R: Real>(cos_theta_d: R, c: EtaPrimeCoefficients) -> R {
+    R::c(c.a) + R::c(c.b) * cos_theta_d * cos_theta_d
+}
+
+/// `1 / eta'` of Karis' Bravais index ([`scaled_eta_prime_karis`]):
+/// `cos theta_d / (a + b cos^2 theta_d)` (Karis 2016), the `a` of [`h_tt_karis`] and the
+/// factor of Snell's law `sin gamma_t = h / eta'`, for `cos_theta_d` in [0, 1].
+///
+/// Finite everywhere for coefficients with `a > 0` and `a + b > 0` (Karis' and the refit): at
+/// grazing (`cos theta_d = 0`) it is exactly 0, the limit of the exact `1 / eta'`. Relative
+/// error `1 / (1 + e) - 1` where `e` is that of eta'.
+pub fn inverse_eta_prime_karis<R: Real>(cos_theta_d: R, c: EtaPrimeCoefficients) -> R {
+    cos_theta_d / scaled_eta_prime_karis(cos_theta_d, c)
+}
+
+/// Karis' azimuthal distributions `D(phi) ~ exp(a cos phi + b)` (Karis 2016): with
+/// [`ExpCosCoefficients::PUBLISHED_D_TT`] the TT lobe `exp(-3.65 cos phi - 3.98)`, which
+/// replaces Pixar's logistic `D(phi, 0.35, pi)`, and with
+/// [`ExpCosCoefficients::PUBLISHED_D_TRT`] the TRT lobe `exp(17 cos phi - 16.78)`, which
+/// replaces `3/4 D(phi, 0.15, 0)`. `phi` is the relative azimuth, radians.
+///
+/// Domain: every finite phi (even and 2 pi-periodic); the result is positive and finite for
+/// finite coefficients. Errors (RMS over phi in [0, pi], relative to the reference's peak) are
+/// documented with the coefficient sets.
+pub fn d_karis<R: Real>(phi: R, c: ExpCosCoefficients) -> R {
+    (R::c(c.a) * phi.cos() + R::c(c.b)).exp()
+}
+
+/// Karis' TT offset `h_TT ~ (1 + a (c1 - c2 cos phi)) cos(phi/2)` (Karis 2016; `HairBsdf.ush`
+/// with [`HTtCoefficients::PUBLISHED`], c1 = 0.6, c2 = 0.8), where `a = 1/eta'`
+/// ([`inverse_eta_prime_karis`]) and `phi` is the relative azimuth in [-pi, pi], radians.
+///
+/// It approximates |h_TT|, the offset whose TT exit angle `Phi(1, h)` is phi (Marschner et al.
+/// 2003 eq. 3), which is even in phi and exists only for `|phi| >= 2 asin(a)`; the
+/// approximation is finite for every phi and a. Errors over theta_d in [0, 80 deg] and the
+/// azimuths where the root exists are documented with the coefficient sets.
+pub fn h_tt_karis<R: Real>(a: R, phi: R, c: HTtCoefficients) -> R {
+    (R::c(1.0) + a * (R::c(c.c1) - R::c(c.c2) * phi.cos())) * (R::c(0.5) * phi).cos()
+}
