@@ -19,25 +19,20 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
-use hairmath::absorption::sigma_a_from_melanin;
-use hairmath::bcsdf::batch::{batch_model_for, BatchLanes};
-use hairmath::bcsdf::{batch_model, eval_batch, pdf_batch, ChiangHair, ChiangParams};
+use hairmath::bcsdf::{
+    eval_batch, pdf_batch, BatchLanes, Bcsdf, ChiangHair, Model, Query, RandomNumbers, SampledBcsdf,
+};
 use hairmath::geometry::V3;
+use hairmath::params::HairParams;
 use hairmath::real::Real;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
 const N: usize = 1024;
 
-fn params() -> ChiangParams {
-    ChiangParams::new(
-        0.3,
-        0.3,
-        2.0_f64.to_radians(),
-        1.55,
-        sigma_a_from_melanin(1.3, 0.0).expect("valid melanin"),
-    )
-    .expect("valid parameters")
+/// beta_m = beta_n = 0.3, a 2 degree tilt, eta = 1.55, eumelanin 1.3.
+fn params() -> HairParams {
+    HairParams::default()
 }
 
 /// Deterministic inputs: uniform directions on the sphere, h uniform in [-1, 1], and three
@@ -88,7 +83,7 @@ struct Scalar<R> {
 }
 
 impl<R: Real> Scalar<R> {
-    fn new(p: &ChiangParams, x: &Inputs) -> Self {
+    fn new(p: &HairParams, x: &Inputs) -> Self {
         Scalar {
             hair: ChiangHair::new(p),
             wi: v3(&x.wi),
@@ -111,7 +106,7 @@ fn bench_eval(c: &mut Criterion) {
         b.iter(|| {
             let hair = black_box(&s64.hair);
             for (k, o) in out64.iter_mut().enumerate() {
-                *o = hair.eval(s64.wi[k], s64.wo[k], s64.h[k]);
+                *o = hair.eval(&Query::new(s64.wi[k], s64.wo[k], s64.h[k]));
             }
             black_box(&mut out64);
         })
@@ -123,7 +118,7 @@ fn bench_eval(c: &mut Criterion) {
         b.iter(|| {
             let hair = black_box(&s32.hair);
             for (k, o) in out32.iter_mut().enumerate() {
-                *o = hair.eval(s32.wi[k], s32.wo[k], s32.h[k]);
+                *o = hair.eval(&Query::new(s32.wi[k], s32.wo[k], s32.h[k]));
             }
             black_box(&mut out32);
         })
@@ -132,10 +127,10 @@ fn bench_eval(c: &mut Criterion) {
     fn batch<L: BatchLanes>(
         g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
         name: &str,
-        p: &ChiangParams,
+        p: &HairParams,
         x: &Inputs,
     ) {
-        let hair = batch_model_for::<L>(p);
+        let hair = ChiangHair::<f64>::new(p).instantiate::<L>();
         let mut out = vec![[0.0_f32; 3]; N];
         g.bench_function(BenchmarkId::new("batch", name), |b| {
             b.iter(|| {
@@ -174,7 +169,13 @@ fn bench_sample(c: &mut Criterion) {
                 let hair = black_box(&s.hair);
                 for k in 0..N {
                     let [u0, u1, uc] = s.u[k];
-                    out.push(hair.sample(s.wo[k], s.h[k], [u0, u1], uc));
+                    let u = RandomNumbers {
+                        lobe: uc,
+                        longitudinal: u0,
+                        cone: u1,
+                        offset: R::c(0.0),
+                    };
+                    out.push(hair.sample(s.wo[k], s.h[k], u));
                 }
                 black_box(&mut out);
             })
@@ -201,7 +202,7 @@ fn bench_pdf(c: &mut Criterion) {
             b.iter(|| {
                 let hair = black_box(&s.hair);
                 for (k, o) in out.iter_mut().enumerate() {
-                    *o = hair.pdf(s.wi[k], s.wo[k], s.h[k]);
+                    *o = hair.pdf(&Query::new(s.wi[k], s.wo[k], s.h[k]));
                 }
                 black_box(&mut out);
             })
@@ -210,7 +211,7 @@ fn bench_pdf(c: &mut Criterion) {
     run(&mut g, "f64", &Scalar::<f64>::new(&p, &x));
     run(&mut g, "f32", &Scalar::<f32>::new(&p, &x));
 
-    let hair8 = batch_model(&p);
+    let hair8 = ChiangHair::<f64>::new(&p).instantiate::<wide::f32x8>();
     let mut out = vec![0.0_f32; N];
     g.bench_function(BenchmarkId::new("batch", "f32x8"), |b| {
         b.iter(|| {
@@ -247,13 +248,13 @@ fn peer_style(n: usize) {
     let h: Vec<f32> = (0..n).map(|_| rng.random_range(-1.0..=1.0)).collect();
     let mut out = vec![[0.0_f32; 3]; n];
     fn best<L: BatchLanes>(
-        p: &ChiangParams,
+        p: &HairParams,
         wi: &[[f32; 3]],
         wo: &[[f32; 3]],
         h: &[f32],
         out: &mut [[f32; 3]],
     ) -> f64 {
-        let hair = batch_model_for::<L>(p);
+        let hair = ChiangHair::<f64>::new(p).instantiate::<L>();
         let mut best = f64::INFINITY;
         for pass in 0..6 {
             let t = std::time::Instant::now();

@@ -9,17 +9,17 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use hairmath::absorption::sigma_a_from_melanin;
-use hairmath::bcsdf::{ChiangFarField, ChiangHair, ChiangParams, FarFieldRule};
+use hairmath::bcsdf::{Bcsdf, ChiangFarField, ChiangHair, FarFieldRule, Query};
 use hairmath::geometry::{local_direction, V3};
 use hairmath::lut::{bake, FarFieldN};
+use hairmath::params::{AzimuthalRoughness, HairParams};
 use hairmath::real::Real;
 
 const N: usize = 256;
 
-fn params() -> ChiangParams {
-    let sigma_a = sigma_a_from_melanin(1.3, 0.0).expect("valid melanin");
-    ChiangParams::new(0.3, 0.3, 2f64.to_radians(), 1.55, sigma_a).expect("valid parameters")
+/// beta_m = beta_n = 0.3, a 2 degree tilt, eta = 1.55, eumelanin 1.3.
+fn params() -> HairParams {
+    HairParams::default()
 }
 
 /// (sin theta_o, cos theta_o, phi) on a deterministic low-discrepancy sequence.
@@ -52,15 +52,18 @@ fn bench_np(c: &mut Criterion) {
         fast(
             &mut g,
             &format!("f64 {nodes} nodes"),
-            &ChiangFarField::new(hair, &rule),
+            &ChiangFarField::<f64>::new(&params(), &rule),
             &xs,
         );
-        let far32 = ChiangFarField::new(ChiangHair::<f32>::new(&params()), &rule);
+        let far32 = ChiangFarField::<f32>::new(&params(), &rule);
         fast(&mut g, &format!("f32 {nodes} nodes"), &far32, &xs);
     }
     // The same N_p from a baked 32 x 16 x 4 table over (phi, theta_o, beta_n): 12 channels
     // (four lobes, rgb) per trilinear lookup.
-    let baker = FarFieldN::new(1.55, params().sigma_a(), 0.2, 0.5, 1e-6).expect("valid baker");
+    let p = params();
+    let roughness = |b| AzimuthalRoughness::new(b).expect("valid roughness");
+    let baker = FarFieldN::new(p.eta, p.sigma_a, roughness(0.2), roughness(0.5), 1e-6)
+        .expect("valid baker");
     let table = bake(&baker, &[32, 16, 4]).expect("valid sizes");
     let coords: Vec<[f32; 3]> = xs
         .iter()
@@ -108,15 +111,15 @@ fn bench_eval(c: &mut Criterion) {
     let mut g = c.benchmark_group("far_field_eval");
     g.throughput(Throughput::Elements(N as u64));
     let rule = FarFieldRule::gauss_legendre(32).expect("valid node count");
-    let far64 = ChiangFarField::new(ChiangHair::<f64>::new(&params()), &rule);
+    let far64 = ChiangFarField::<f64>::new(&params(), &rule);
     g.bench_function(BenchmarkId::new("eval", "f64 32 nodes"), |b| {
         b.iter(|| {
             for &(wi, wo) in &pairs {
-                black_box(far64.eval(wi, wo));
+                black_box(far64.eval(&Query::far(wi, wo)));
             }
         })
     });
-    let far32 = ChiangFarField::new(ChiangHair::<f32>::new(&params()), &rule);
+    let far32 = ChiangFarField::<f32>::new(&params(), &rule);
     let pairs32: Vec<(V3<f32>, V3<f32>)> = pairs
         .iter()
         .map(|(a, b)| (V3::c(a.x, a.y, a.z), V3::c(b.x, b.y, b.z)))
@@ -124,7 +127,7 @@ fn bench_eval(c: &mut Criterion) {
     g.bench_function(BenchmarkId::new("eval", "f32 32 nodes"), |b| {
         b.iter(|| {
             for &(wi, wo) in &pairs32 {
-                black_box(far32.eval(wi, wo));
+                black_box(far32.eval(&Query::far(wi, wo)));
             }
         })
     });

@@ -19,10 +19,10 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use hairmath::sh::basis::eval_sh;
-use hairmath::sh::product::ProductPlan;
-use hairmath::sh::rotation::{check_rotation, rotate_bands012, ShRotation};
-use hairmath::sh::wigner::wigner_3j_int;
+use hairmath::sh::eval_sh;
+use hairmath::sh::wigner_3j_int;
+use hairmath::sh::ProductPlan;
+use hairmath::sh::{check_rotation, rotate_bands012, ShRotation};
 use rand::{Rng, SeedableRng};
 
 /// (l1, l2, l3, m1, m2, m3) of all non-trivially-allowed symbols with l <= l_max.

@@ -37,8 +37,13 @@ pub enum ParamError {
 }
 
 impl ParamError {
-    /// Checks `ok(value)` and otherwise returns [`ParamError::OutOfRange`].
-    pub(crate) fn check(
+    /// `value` if it is finite and `ok(value)` holds, otherwise [`ParamError::OutOfRange`]
+    /// naming `name` with the domain `allowed` in words: the one check behind every validated
+    /// parameter of the crate, for models' own parameters too.
+    ///
+    /// # Errors
+    /// [`ParamError::OutOfRange`] as described.
+    pub fn check(
         name: &'static str,
         value: f64,
         allowed: &'static str,

@@ -6,7 +6,7 @@ use hairmath::geometry::V3;
 use hairmath::params::{
     AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
 };
-use hairmath::sh::gaunt::{gaunt_complex, gaunt_real};
+use hairmath::sh::{gaunt_complex, gaunt_real};
 use std::io::Write;
 use std::process::{Command, Output, Stdio};
 
@@ -517,7 +517,7 @@ fn fit_json_has_the_documented_keys_and_the_library_values() {
             .as_f64()
             .unwrap()
     };
-    use hairmath::fit::hg::{fit_hg_g, HgReading};
+    use hairmath::fit::{fit_hg_g, HgReading};
     for deg in [5, 10, 20] {
         let library = fit_hg_g(HgReading::Literal, f64::from(deg).to_radians())
             .unwrap()
@@ -550,4 +550,159 @@ fn fit_table_and_bad_eta() {
     ] {
         assert!(out.contains(heading), "{heading} missing");
     }
+}
+
+/// The message of an invalid value is the library's, whichever subcommand takes it.
+#[test]
+fn an_invalid_value_gives_the_same_message_in_every_subcommand() {
+    let dir = std::env::temp_dir().join(format!("hairmath-cli-params-{}", std::process::id()));
+    let out = dir.to_str().expect("a UTF-8 path");
+    let beta_n = "beta_n = 1.5 is not allowed: the azimuthal roughness must be in (0, 1]";
+    let eta = "eta = 5 is not allowed: the relative index of refraction must be in (1, 3]";
+    let sigma_a =
+        "sigma_a = -1 is not allowed: absorption must be finite and >= 0 in every channel";
+    let cases: [(&[&str], &str); 8] = [
+        (
+            &[
+                "eval",
+                "--beta-m",
+                "0.3",
+                "--beta-n",
+                "1.5",
+                "--sigma-a",
+                "1",
+            ],
+            beta_n,
+        ),
+        (
+            &[
+                "eval",
+                "--model",
+                "chiang-far",
+                "--beta-m",
+                "0.3",
+                "--beta-n",
+                "1.5",
+                "--sigma-a",
+                "1",
+            ],
+            beta_n,
+        ),
+        (
+            &[
+                "lut",
+                "--kind",
+                "far-field",
+                "--beta-n-range",
+                "0.2,1.5",
+                "--out",
+                out,
+            ],
+            beta_n,
+        ),
+        (
+            &[
+                "eval",
+                "--beta-m",
+                "0.3",
+                "--beta-n",
+                "0.3",
+                "--sigma-a",
+                "1",
+                "--eta",
+                "5",
+            ],
+            eta,
+        ),
+        (
+            &[
+                "eval",
+                "--model",
+                "marschner",
+                "--sigma-a",
+                "1",
+                "--eta",
+                "5",
+            ],
+            eta,
+        ),
+        (
+            &["lut", "--kind", "gerard", "--eta", "5", "--out", out],
+            eta,
+        ),
+        (&["fit", "--eta", "5"], eta),
+        (
+            &["lut", "--kind", "nguyen-n", "--sigma-a", "-1", "--out", out],
+            sigma_a,
+        ),
+    ];
+    for (args, message) in cases {
+        let o = hairmath(args, &format!("{HEADER}\n"));
+        assert_fails_with(&o, &[message]);
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn flags_of_other_models_and_missing_flags_are_named() {
+    let o = hairmath(
+        &[
+            "eval",
+            "--model",
+            "marschner",
+            "--sigma-a",
+            "1",
+            "--beta-m",
+            "0.3",
+        ],
+        "",
+    );
+    assert_fails_with(
+        &o,
+        &["--beta-m and --beta-n and --alpha-deg apply only to --model chiang, chiang-far"],
+    );
+    let o = hairmath(
+        &[
+            "eval",
+            "--model",
+            "chiang",
+            "--beta-m",
+            "0.3",
+            "--sigma-a",
+            "1",
+        ],
+        "",
+    );
+    assert_fails_with(&o, &["--model chiang requires --beta-n"]);
+    let o = hairmath(&["eval", "--model", "nonsense"], "");
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("chiang-far"), "{}", stderr(&o));
+}
+
+#[test]
+fn marschner_matches_the_library() {
+    use hairmath::bcsdf::Marschner2003;
+    use hairmath::params::MarschnerLobes;
+    let o = eval_model("marschner", &["--sigma-a", "0.5,0.8,1.4"], &far_input());
+    assert!(o.status.success(), "stderr: {}", stderr(&o));
+    let model = Marschner2003 {
+        lobes: MarschnerLobes::default(),
+        eta: RefractiveIndex::new(1.55).unwrap(),
+        sigma_a: Absorption::new([0.5, 0.8, 1.4]).unwrap(),
+        caustic: Some(hairmath::azimuthal::CausticParams::default()),
+    };
+    for (line, (wi, wo)) in stdout(&o).lines().skip(1).zip(FAR_ROWS) {
+        assert_eq!(
+            appended(line),
+            model.eval(&Query::far(unit(wi), unit(wo))),
+            "{line}"
+        );
+    }
+}
+
+/// `hairmath eval --model MODEL` with `flags` only.
+fn eval_model(model: &str, flags: &[&str], stdin: &str) -> Output {
+    let mut args = vec!["eval", "--model", model];
+    args.extend(flags);
+    hairmath(&args, stdin)
 }

@@ -5,11 +5,11 @@
 
 use hairmath::absorption::{segment_transmittance, PathLength};
 use hairmath::azimuthal::{attenuations, refracted_offset};
-use hairmath::fit::absorption_exponent::{
+use hairmath::fit::constants_source;
+use hairmath::fit::{
     absorption_fits, absorption_report, fit_exponent, lobe_energies, ratio_loss, Directions,
     EnergyRule, Lobe, RatioSamples, PATHS, TABLE_SIGMA_A,
 };
-use hairmath::fit::generate::constants_source;
 use hairmath::fit::{is_coordinate_minimum, FitSettings};
 use hairmath::models::{gerard_eq8_trt_corrected, gerard_eq8_trt_printed};
 use hairmath::quadrature::adaptive;

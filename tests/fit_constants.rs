@@ -3,8 +3,8 @@
 
 #![cfg(feature = "fit")]
 
-use hairmath::fit::generate::{all_fits, constants_source};
 use hairmath::fit::FitSettings;
+use hairmath::fit::{all_fits, constants_source};
 
 const COMMITTED: &str = include_str!("../src/models/constants.rs");
 

@@ -7,13 +7,13 @@
 
 use hairmath::absorption::PathLength;
 use hairmath::azimuthal::exit_angle_of_offset;
-use hairmath::fit::absorption_exponent::{lobe_energies, Directions, EnergyRule};
-use hairmath::fit::frostbite::{mean_attenuation, TtSlice};
-use hairmath::fit::hg::{hg_l2_residual, HgReading};
-use hairmath::fit::karis::{
+use hairmath::fit::{
     d_trt_reference, d_tt_reference, eta_prime_relative_error, h_tt_exact, h_tt_min_phi,
     CLAIMED_ETA_PRIME_ERROR, PUBLISHED_ETA_PRIME,
 };
+use hairmath::fit::{hg_l2_residual, HgReading};
+use hairmath::fit::{lobe_energies, Directions, EnergyRule};
+use hairmath::fit::{mean_attenuation, TtSlice};
 use hairmath::fit::{FitError, FitSettings};
 use hairmath::models::{h_tt_karis, offset_attenuation, Transmitted};
 use hairmath::real::wrap_angle;

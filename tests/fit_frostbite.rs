@@ -6,7 +6,7 @@
 
 use hairmath::azimuthal::{exit_angle_of_offset, trimmed_logistic};
 use hairmath::bcsdf::logistic_scale;
-use hairmath::fit::frostbite::*;
+use hairmath::fit::*;
 use hairmath::fit::{FitError, FitSettings};
 use hairmath::models::{offset_attenuation, tt_gaussian, Transmitted};
 use hairmath::real::wrap_angle;

@@ -4,14 +4,14 @@
 
 #![cfg(feature = "fit")]
 
-use hairmath::fit::hg::*;
 use hairmath::fit::FitError;
+use hairmath::fit::*;
 use hairmath::lobe::{hg_gerard_printed, HenyeyGreenstein};
-use hairmath::models::constants::{
+use hairmath::models::{gerard_hg_g, hg_g_normalised};
+use hairmath::models::{
     GERARD_HG_G_LITERAL, GERARD_HG_G_LITERAL_POLYNOMIAL_MAX_ERROR,
     HG_G_NORMALISED_POLYNOMIAL_MAX_ERROR,
 };
-use hairmath::models::{gerard_hg_g, hg_g_normalised};
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 

@@ -4,7 +4,7 @@
 
 use argmin::core::TerminationReason;
 use hairmath::azimuthal::exit_angle_of_offset;
-use hairmath::fit::karis::*;
+use hairmath::fit::*;
 use hairmath::fit::{is_coordinate_minimum, FitError, FitSettings};
 use hairmath::fresnel::bravais_eta_perpendicular;
 use hairmath::models::h_tt_karis;

@@ -5,15 +5,15 @@
 //!
 //! Everything but the last section needs only the always-compiled models.
 
-use hairmath::models::constants::{
-    FROSTBITE_TRT_OFFSET_H, FROSTBITE_TT_OFFSET_H, KARIS_D_TRT, KARIS_D_TT, KARIS_ETA_PRIME,
-    KARIS_H_TT,
-};
 use hairmath::models::{
     d_karis, gerard_attenuation, gerard_eq8_trt_corrected, gerard_eq8_trt_printed, gerard_hg_g,
     h_tt_karis, hg_g_normalised, inverse_eta_prime_karis, offset_attenuation,
     scaled_eta_prime_karis, tt_gaussian, EtaPrimeCoefficients, ExpCosCoefficients, HTtCoefficients,
     Transmitted, GERARD_K_TRT, GERARD_K_TT, HG_G_BETA_DOMAIN,
+};
+use hairmath::models::{
+    FROSTBITE_TRT_OFFSET_H, FROSTBITE_TT_OFFSET_H, KARIS_D_TRT, KARIS_D_TT, KARIS_ETA_PRIME,
+    KARIS_H_TT,
 };
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -269,18 +269,16 @@ fn frostbite_values_are_the_documented_ones() {
 #[cfg(feature = "fit")]
 mod shared_with_the_fits {
     use super::*;
-    use hairmath::fit::absorption_exponent::{
-        ratio_loss, ApproximationError, Lobe, RatioReference, RatioSamples,
-    };
-    use hairmath::fit::frostbite::{
-        gaussian_loss, AttenuationProblem, ATTENUATION_SIGMA_A, PUBLISHED_TRT_OFFSET_H,
-        PUBLISHED_TT_OFFSET_H,
-    };
-    use hairmath::fit::karis::{
+    use hairmath::fit::FitSettings;
+    use hairmath::fit::{
         eta_prime_relative_error, exp_cos_rms_error, fit_h_tt_to, PUBLISHED_D_TRT, PUBLISHED_D_TT,
         PUBLISHED_ETA_PRIME, PUBLISHED_H_TT,
     };
-    use hairmath::fit::FitSettings;
+    use hairmath::fit::{
+        gaussian_loss, AttenuationProblem, ATTENUATION_SIGMA_A, PUBLISHED_TRT_OFFSET_H,
+        PUBLISHED_TT_OFFSET_H,
+    };
+    use hairmath::fit::{ratio_loss, ApproximationError, Lobe, RatioReference, RatioSamples};
     use hairmath::fresnel::bravais_eta_perpendicular;
 
     #[test]

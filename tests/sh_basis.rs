@@ -5,16 +5,16 @@
 
 use glam::DVec3;
 use hairmath::quadrature::{gauss_legendre, integrate};
-use hairmath::real::traced::Binary;
+use hairmath::real::Binary;
 use hairmath::real::{trace, Traced};
-use hairmath::sh::basis::{
-    eval_sh, eval_sh_f64, eval_sh_f64_into, eval_sh_into, MAX_FAST_BANDS, MAX_LMAX,
-};
-use hairmath::sh::projection::{
+use hairmath::sh::{apply_window, hanning, lanczos};
+use hairmath::sh::{
     cube_texel_direction, lat_long_direction, project, project_cube_map, project_lat_long,
     project_with_nodes, reconstruct,
 };
-use hairmath::sh::window::{apply_window, hanning, lanczos};
+use hairmath::sh::{
+    eval_sh, eval_sh_f64, eval_sh_f64_into, eval_sh_into, MAX_FAST_BANDS, MAX_LMAX,
+};
 use hairmath::ParamError;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
@@ -139,8 +139,8 @@ fn multiply_counts_are_at_most_sloans() {
     assert!(g
         .nodes()
         .iter()
-        .all(|n| !matches!(n, hairmath::real::traced::Node::Unary(op, _)
-            if *op != hairmath::real::traced::Unary::Neg)));
+        .all(|n| !matches!(n, hairmath::real::Node::Unary(op, _)
+            if *op != hairmath::real::Unary::Neg)));
 }
 
 #[test]

@@ -2,10 +2,10 @@
 //! traced product code against the f32 instantiation; multiply counts against Snyder 2006.
 
 use hairmath::quadrature::gauss_legendre;
-use hairmath::real::traced::Binary;
+use hairmath::real::Binary;
 use hairmath::real::{trace, Traced};
-use hairmath::sh::gaunt::{gaunt_complex, gaunt_real, index_to_lm, GauntTensor};
-use hairmath::sh::product::{product, triple_product_integral, ProductPlan};
+use hairmath::sh::{gaunt_complex, gaunt_real, index_to_lm, GauntTensor};
+use hairmath::sh::{product, triple_product_integral, ProductPlan};
 use rand::{Rng, SeedableRng};
 use std::f64::consts::PI;
 

@@ -3,14 +3,14 @@
 //! `g(x) = f(R^T x)`), near-gimbal rotations, zonal rotation, and typed errors.
 
 use glam::{DMat3, DQuat, DVec3};
-use hairmath::real::traced::Binary;
+use hairmath::real::Binary;
 use hairmath::real::{trace, Real, Traced};
-use hairmath::sh::basis::{eval_sh, eval_sh_f64};
-use hairmath::sh::projection::reconstruct;
-use hairmath::sh::rotation::{
+use hairmath::sh::reconstruct;
+use hairmath::sh::{
     check_rotation, rotate_band1, rotate_band2, rotate_bands012, rotate_low_order, rotate_zonal,
     rotate_zonal_into, rotation_z_to, ShRotation, MAX_ROTATION_LMAX,
 };
+use hairmath::sh::{eval_sh, eval_sh_f64};
 use hairmath::ParamError;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};

@@ -1,7 +1,7 @@
 //! Wigner 3-j symbols: exact values, correct rounding against an independent big-rational
 //! evaluation, symmetries, selection rules, orthogonality, typed errors.
 
-use hairmath::sh::wigner::{wigner_3j, wigner_3j_exact, wigner_3j_int, HalfInt};
+use hairmath::sh::{wigner_3j, wigner_3j_exact, wigner_3j_int, HalfInt};
 use hairmath::ParamError;
 use num_bigint::{BigInt, BigUint};
 use num_traits::{One, Signed, ToPrimitive, Zero};

@@ -29,7 +29,7 @@ use super::model::{Bcsdf, Query, SampledBcsdf};
 use crate::geometry::V3;
 use crate::real::Real;
 
-pub use crate::real::simd::BatchReal;
+pub use crate::real::BatchReal;
 
 /// Lanes per [`f32x8`] value.
 pub const LANES: usize = 8;
@@ -81,6 +81,7 @@ impl_batch_lanes!(f32x16, 16);
 /// The slices handed to a batch function do not all have the same length.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("batch slices must have equal lengths: wi {wi}, wo {wo}, h {h}, out {out}")]
+#[non_exhaustive]
 pub struct BatchLengthError {
     /// Length of `wi`.
     pub wi: usize,

@@ -9,7 +9,7 @@
 //! ([`uniform_block!`](crate::uniform_block)), its physics ([`Bcsdf`], generic over
 //! [`crate::real::Real`]), [`Model`] (uniforms from the parameters, the model from the
 //! uniforms) and [`FromInputs`] (its name and named inputs); then one line in
-//! [`registry::MODELS`] makes `hairmath eval --model NAME` accept it. The README shows an
+//! [`MODELS`] makes `hairmath eval --model NAME` accept it. The README shows an
 //! example.
 
 mod batch;
@@ -18,7 +18,7 @@ mod far_field;
 mod inputs;
 mod marschner;
 mod model;
-pub mod registry;
+mod registry;
 
 pub use batch::{eval_batch, pdf_batch, BatchLanes, BatchLengthError, BatchReal, LANES};
 pub use chiang::{logistic_scale, longitudinal_variance, ChiangHair, ChiangUniforms, CHIANG_LOBES};
@@ -34,3 +34,4 @@ pub use model::{
     query_of, query_parameters, trace_eval, trace_model, traced_inputs, Bcsdf, HairSample, Model,
     Query, RandomNumbers, SampledBcsdf, UniformBlock, UniformField, UniformValue,
 };
+pub use registry::{find_model, BuildModel, ModelEntry, MODELS};

@@ -8,6 +8,9 @@ use super::model::Bcsdf;
 use super::ChiangHair;
 use crate::error::ParamError;
 
+/// Builds a model from its input values, evaluated in `f64`.
+pub type BuildModel = fn(&InputValues) -> Result<Box<dyn Bcsdf<f64>>, ParamError>;
+
 /// A model that can be built by name from [`InputValues`].
 #[derive(Clone, Copy, Debug)]
 pub struct ModelEntry {
@@ -18,7 +21,7 @@ pub struct ModelEntry {
     /// Its inputs ([`FromInputs::INPUTS`]).
     pub inputs: &'static [Input],
     /// Builds it, evaluated in `f64`.
-    pub build: fn(&InputValues) -> Result<Box<dyn Bcsdf<f64>>, ParamError>,
+    pub build: BuildModel,
 }
 
 impl ModelEntry {
@@ -47,6 +50,6 @@ pub const MODELS: &[ModelEntry] = &[
 ];
 
 /// The registered model called `name`.
-pub fn model(name: &str) -> Option<&'static ModelEntry> {
+pub fn find_model(name: &str) -> Option<&'static ModelEntry> {
     MODELS.iter().find(|m| m.name == name)
 }

@@ -5,23 +5,34 @@
 //! Frostbite's per-slice Gaussians. Each submodule states what is fitted to what (reference,
 //! metric, domain), refits it with argmin and measures the error of both the published and the
 //! refitted value. The closed forms themselves live in [`crate::models`], which this module
-//! calls and never the reverse. The results ship in [`crate::models::constants`], a generated
+//! calls and never the reverse. The results ship in [`crate::models`] (`src/models/constants.rs`), a generated
 //! file that needs none of the fitting machinery: it is always compiled, while the fitter
 //! itself is behind the `fit` feature (on by default).
 
 #[cfg(feature = "fit")]
-pub mod absorption_exponent;
+mod absorption_exponent;
 #[cfg(feature = "fit")]
-pub mod frostbite;
+mod frostbite;
 #[cfg(feature = "fit")]
-pub mod generate;
+mod generate;
 #[cfg(feature = "fit")]
-pub mod hg;
+mod hg;
 #[cfg(feature = "fit")]
-pub mod karis;
+mod karis;
 
 #[cfg(feature = "fit")]
 mod optimise;
+
+#[cfg(feature = "fit")]
+pub use absorption_exponent::*;
+#[cfg(feature = "fit")]
+pub use frostbite::*;
+#[cfg(feature = "fit")]
+pub use generate::*;
+#[cfg(feature = "fit")]
+pub use hg::*;
+#[cfg(feature = "fit")]
+pub use karis::*;
 #[cfg(feature = "fit")]
 pub use optimise::{
     is_coordinate_minimum, linear_least_squares, minimize, minimize_scalar, FitError, Minimum,
@@ -49,7 +60,7 @@ pub struct ConstantFit {
     pub refit_error: f64,
 }
 
-/// A constant for the generated file [`crate::models::constants`]: its Rust name, its documentation (what it
+/// A constant for the generated file [`crate::models`] (`src/models/constants.rs`): its Rust name, its documentation (what it
 /// approximates, the metric, the domain and the measured error) and its value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GeneratedConst {
@@ -78,7 +89,7 @@ pub enum ConstValue {
 pub struct FitOutput {
     /// Published against refitted values, with errors.
     pub records: Vec<ConstantFit>,
-    /// Constants for [`crate::models::constants`].
+    /// Constants for [`crate::models`] (`src/models/constants.rs`).
     pub constants: Vec<GeneratedConst>,
 }
 

@@ -11,6 +11,7 @@ use argmin::solver::neldermead::NelderMead;
 
 /// Why a fit failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum FitError {
     /// The optimiser stopped without converging.
     #[error("fit of {what} did not converge: {reason}")]

@@ -2,11 +2,12 @@
 //! Gerard uses it, and d'Eon's energy-conserving lobe with its log-space Bessel function.
 //! Gerard's closed forms of the asymmetry g(beta) are in [`crate::models`].
 
-pub mod bessel;
+mod bessel;
 mod deon;
 mod gaussian;
 mod henyey_greenstein;
 
+pub use bessel::{i0, i0e_split, log_i0, log_i0e};
 pub use deon::{deon_lobe, deon_lobe_sample_cos_theta, DeonLobe};
 pub use gaussian::gaussian_lobe;
 pub use henyey_greenstein::{hg_gerard_printed, HenyeyGreenstein};

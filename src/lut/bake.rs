@@ -4,7 +4,7 @@
 use core::f64::consts::{FRAC_PI_2, PI};
 
 use super::table::{Axis, ParamValue, Table, TableMeta};
-use super::LutError;
+use super::{LutError, ShapeError};
 use crate::absorption::Absorption;
 use crate::azimuthal::{CausticParams, LOBES};
 use crate::bcsdf::{ChiangHair, Marschner2003};
@@ -43,12 +43,13 @@ pub trait Baker {
     fn eval(&self, coords: &[f64], out: &mut [f64]);
 }
 
-fn check_sizes(kind: &str, sizes: &[usize], dims: usize) -> Result<(), LutError> {
+fn check_sizes(kind: &'static str, sizes: &[usize], dims: usize) -> Result<(), LutError> {
     if sizes.len() != dims {
-        return Err(LutError::Shape(format!(
-            "{kind} tables have {dims} axes; {} sizes given",
-            sizes.len()
-        )));
+        return Err(LutError::Shape(ShapeError::Sizes {
+            kind,
+            axes: dims,
+            sizes: sizes.len(),
+        }));
     }
     Ok(())
 }
@@ -83,7 +84,7 @@ fn clamp_to(axis_min: f64, axis_max: f64, x: f64) -> f64 {
 ///
 /// Channels, with theta = asin(sin theta), `theta_h = (theta_i + theta_o)/2`,
 /// `theta_d = (theta_o - theta_i)/2`:
-/// - `M_R`, `M_TT`, `M_TRT`: [`gaussian_lobe`]`(beta_p, theta_h - alpha_p)` (unit area in
+/// - `M_R`, `M_TT`, `M_TRT`: [`crate::lobe::gaussian_lobe`]`(beta_p, theta_h - alpha_p)` (unit area in
 ///   theta_h, units 1/radian), with Marschner's shifts and widths derived from (alpha_R,
 ///   beta_R): `alpha_TT = -alpha_R / 2`, `alpha_TRT = -3 alpha_R / 2`, `beta_TT = beta_R / 2`,
 ///   `beta_TRT = 2 beta_R` (Marschner 2003, Table 1);
@@ -175,7 +176,7 @@ impl Baker for NguyenM {
 ///
 /// Channels: `N_TT_r, N_TT_g, N_TT_b, N_R` (the first texture: TT in RGB, R in alpha) and
 /// `N_TRT_r, N_TRT_g, N_TRT_b` (the second texture), each
-/// [`marschner_np`]`(p, phi, sin theta_d, eta, sigma_a, caustic)`: per radian of phi, with
+/// [`crate::azimuthal::marschner_np`]`(p, phi, sin theta_d, eta, sigma_a, caustic)`: per radian of phi, with
 /// Marschner's path-length exponent `2 sigma_a (1 + cos 2 gamma_t) / cos theta_t`
 /// (`PathLength::Marschner2003`, sigma_a per unit radius), **without** the `1 / cos^2 theta_d`
 /// factor (take cos theta_d from the M texture) and without any cos theta_i factor. The caustic
@@ -261,7 +262,7 @@ impl Baker for NguyenN {
 /// Marschner et al. 2003's N_p with **zero absorption**, one channel per lobe (`N_R`, `N_TT`,
 /// `N_TRT`), over axis 0 = phi in [0, pi] (N_p is even in phi, tested; look up |phi|) and
 /// axis 1 = theta_d in [0, theta_d max] (N_p depends on sin^2 theta_d; look up |theta_d|).
-/// Each value is [`marschner_np`]`(p, phi, sin theta_d, eta, 0, caustic)`: per radian of phi,
+/// Each value is [`crate::azimuthal::marschner_np`]`(p, phi, sin theta_d, eta, 0, caustic)`: per radian of phi,
 /// without `1 / cos^2 theta_d` and without the absorption factor `T(sigma_a, h_max)^p` of
 /// Gerard's eq. 7, which the shader multiplies in. 8-bit scales are each channel's maximum.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -578,9 +579,10 @@ pub fn lookup_error(
     let dims = table.axes().len();
     let nc = table.channels().len();
     if dims != baker.dims() || nc != baker.channels().len() {
-        return Err(LutError::Shape(
-            "the table does not match the baker".to_string(),
-        ));
+        return Err(LutError::Shape(ShapeError::BakerMismatch {
+            axes: dims,
+            channels: nc,
+        }));
     }
     let scale = table.channel_max();
     let mut u = [0.0; 3];

@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::table::{ParamValue, Table};
-use super::LutError;
+use super::{LutError, ShapeError};
 
 /// The generator string written to every JSON description; bump the suffix when baked values
 /// change.
@@ -157,11 +157,10 @@ pub fn write_raw(table: &Table, path: &Path) -> Result<PathBuf, LutError> {
 pub fn read_raw(path: &Path) -> Result<Vec<f32>, LutError> {
     let bytes = std::fs::read(path).map_err(|e| io_error(path, e))?;
     if bytes.len() % 4 != 0 {
-        return Err(LutError::Shape(format!(
-            "{}: {} bytes is not a whole number of f32 values",
-            path.display(),
-            bytes.len()
-        )));
+        return Err(LutError::Shape(ShapeError::RawLength {
+            path: path.display().to_string(),
+            bytes: bytes.len(),
+        }));
     }
     Ok(bytes
         .chunks_exact(4)
@@ -180,15 +179,13 @@ pub fn quantize_rgba8(table: &Table, channels: &[usize]) -> Result<(u32, u32, Ve
     let axes = table.axes();
     let nc = table.channels().len();
     if axes.len() != 2 {
-        return Err(LutError::Shape(format!(
-            "8-bit images are written for 2D tables; this one has {} axes",
-            axes.len()
-        )));
+        return Err(LutError::Shape(ShapeError::ImageAxes { axes: axes.len() }));
     }
     if channels.is_empty() || channels.len() > 4 || channels.iter().any(|&c| c >= nc) {
-        return Err(LutError::Shape(format!(
-            "an RGBA8 image takes 1 to 4 of the table's {nc} channels; {channels:?} given"
-        )));
+        return Err(LutError::Shape(ShapeError::ImageChannels {
+            channels: nc,
+            requested: channels.to_vec(),
+        }));
     }
     let (w, h) = (axes[0].size(), axes[1].size());
     let scale = table.png_scale();
@@ -207,8 +204,9 @@ pub fn quantize_rgba8(table: &Table, channels: &[usize]) -> Result<(u32, u32, Ve
             pixels.push(byte);
         }
     }
-    let dim =
-        |n: usize| u32::try_from(n).map_err(|_| LutError::Shape(format!("{n} pixels is too wide")));
+    let dim = |n: usize| {
+        u32::try_from(n).map_err(|_| LutError::Shape(ShapeError::ImageSize { pixels: n }))
+    };
     Ok((dim(w)?, dim(h)?, pixels))
 }
 
@@ -218,7 +216,7 @@ pub fn quantize_rgba8(table: &Table, channels: &[usize]) -> Result<(u32, u32, Ve
 ///
 /// # Errors
 /// As [`quantize_rgba8`], and [`LutError::Io`] if the file cannot be written.
-#[cfg(feature = "cli")]
+#[cfg(feature = "png")]
 pub fn write_png(table: &Table, channels: &[usize], path: &Path) -> Result<(), LutError> {
     let (w, h, pixels) = quantize_rgba8(table, channels)?;
     let file = std::fs::File::create(path).map_err(|e| io_error(path, e))?;

@@ -1,6 +1,6 @@
 //! Lookup tables: a small table type with (bi/tri)linear lookup, bakers for the tables the
 //! real-time hair models use, the measured error of lookup against direct evaluation, and file
-//! output (raw little-endian f32 with a JSON description, and 8-bit PNG with the `cli` feature).
+//! output (raw little-endian f32 with a JSON description, and 8-bit PNG with the `png` feature).
 //!
 //! # Tables ([`Table`])
 //!
@@ -26,7 +26,7 @@
 //! Each baker's documentation states exactly what its channels hold; [`lookup_error`] and
 //! [`error_vs_resolution`] measure lookup against direct evaluation at off-grid points.
 //!
-//! # Files ([`write_raw`], [`write_png`])
+//! # Files ([`write_raw`], and `write_png` with the `png` feature)
 //!
 //! `NAME.f32` holds the samples as little-endian f32 in the layout of [`Table`];
 //! `NAME.f32.json` describes it (kind, axes with names, ranges and sizes, channels, parameters,
@@ -42,7 +42,7 @@ pub use bake::{
     bake, error_vs_resolution, lookup_error, Baker, ErrorStats, FarFieldN, GerardN, NguyenM,
     NguyenN, FAR_FIELD_CHANNELS,
 };
-#[cfg(feature = "cli")]
+#[cfg(feature = "png")]
 pub use io::write_png;
 pub use io::{json_description, quantize_rgba8, raw_bytes, read_raw, write_raw, GENERATOR};
 pub use table::{
@@ -52,8 +52,102 @@ pub use table::{
 
 use crate::error::ParamError;
 
+/// Counts that do not fit together.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ShapeError {
+    /// A baker was given a size per axis for the wrong number of axes.
+    #[error("{kind} tables have {axes} axes; {sizes} sizes given")]
+    Sizes {
+        /// The baker's kind.
+        kind: &'static str,
+        /// Its number of axes.
+        axes: usize,
+        /// The number of sizes given.
+        sizes: usize,
+    },
+    /// A table needs 1 to [`MAX_AXES`] axes.
+    #[error("{axes} axes given, 1 to {MAX_AXES} allowed")]
+    AxisCount {
+        /// The number of axes given.
+        axes: usize,
+    },
+    /// A table needs 1 to [`MAX_CHANNELS`] channels.
+    #[error("{channels} channels given, 1 to {MAX_CHANNELS} allowed")]
+    ChannelCount {
+        /// The number of channels given.
+        channels: usize,
+    },
+    /// The table would hold more than [`MAX_VALUES`] values.
+    #[error("more than {MAX_VALUES} values in the table")]
+    TooManyValues,
+    /// The data does not have one value per grid point and channel.
+    #[error("{given} values given, {expected} expected")]
+    DataLength {
+        /// Values given.
+        given: usize,
+        /// Values the axes and channels need.
+        expected: usize,
+    },
+    /// The 8-bit scales are not one positive finite value per channel.
+    #[error("png_scale needs one positive finite value per channel")]
+    PngScale,
+    /// A lookup with the wrong number of coordinates or outputs.
+    #[error(
+        "lookup with {coordinates} coordinates into {outputs} outputs; the table has {axes} axes \
+         and {channels} channels"
+    )]
+    Lookup {
+        /// Coordinates given.
+        coordinates: usize,
+        /// Output slots given.
+        outputs: usize,
+        /// The table's axes.
+        axes: usize,
+        /// The table's channels.
+        channels: usize,
+    },
+    /// A table measured against a baker it was not baked from.
+    #[error("the table ({axes} axes, {channels} channels) does not match the baker")]
+    BakerMismatch {
+        /// The table's axes.
+        axes: usize,
+        /// The table's channels.
+        channels: usize,
+    },
+    /// A raw file whose length is not a whole number of f32 values.
+    #[error("{path}: {bytes} bytes is not a whole number of f32 values")]
+    RawLength {
+        /// The file.
+        path: String,
+        /// Its length.
+        bytes: usize,
+    },
+    /// 8-bit images are written for 2D tables only.
+    #[error("8-bit images are written for 2D tables; this one has {axes} axes")]
+    ImageAxes {
+        /// The table's axes.
+        axes: usize,
+    },
+    /// An RGBA8 image takes 1 to 4 existing channels.
+    #[error("an RGBA8 image takes 1 to 4 of the table's {channels} channels; {requested:?} given")]
+    ImageChannels {
+        /// The table's channels.
+        channels: usize,
+        /// The channels asked for.
+        requested: Vec<usize>,
+    },
+    /// An image side too large for the PNG format.
+    #[error("{pixels} pixels is too wide")]
+    ImageSize {
+        /// The side's length.
+        pixels: usize,
+    },
+}
+
 /// Why a table could not be built, looked up or written.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum LutError {
     /// An invalid axis.
     #[error("axis {name} ({min} to {max}, {size} samples) is not allowed: {reason}")]
@@ -71,7 +165,7 @@ pub enum LutError {
     },
     /// Counts that do not fit together (axes, channels, sizes, coordinates, data length).
     #[error("table shape: {0}")]
-    Shape(String),
+    Shape(ShapeError),
     /// An invalid model parameter.
     #[error(transparent)]
     Param(#[from] ParamError),

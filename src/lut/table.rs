@@ -1,7 +1,7 @@
 //! The lookup-table type: f32 samples on a regular grid of one to three axes, with
 //! clamp-to-edge (bi/tri)linear interpolation.
 
-use super::LutError;
+use super::{LutError, ShapeError};
 use crate::real::Real;
 
 /// Largest number of axes of a [`Table`].
@@ -149,11 +149,10 @@ impl Table {
     pub fn new(axes: Vec<Axis>, channels: Vec<String>, data: Vec<f32>) -> Result<Self, LutError> {
         let expected = Self::value_count(&axes, channels.len())?;
         if data.len() != expected {
-            return Err(LutError::Shape(format!(
-                "{} values given, {} expected",
-                data.len(),
-                expected
-            )));
+            return Err(LutError::Shape(ShapeError::DataLength {
+                given: data.len(),
+                expected,
+            }));
         }
         Ok(Table {
             axes,
@@ -173,9 +172,7 @@ impl Table {
             && (meta.png_scale.len() != self.channels.len()
                 || meta.png_scale.iter().any(|s| !(s.is_finite() && *s > 0.0)))
         {
-            return Err(LutError::Shape(
-                "png_scale needs one positive finite value per channel".to_string(),
-            ));
+            return Err(LutError::Shape(ShapeError::PngScale));
         }
         self.meta = meta;
         Ok(self)
@@ -205,24 +202,17 @@ impl Table {
     /// [`MAX_VALUES`] values.
     pub fn value_count(axes: &[Axis], channels: usize) -> Result<usize, LutError> {
         if axes.is_empty() || axes.len() > MAX_AXES {
-            return Err(LutError::Shape(format!(
-                "{} axes given, 1 to 3 allowed",
-                axes.len()
-            )));
+            return Err(LutError::Shape(ShapeError::AxisCount { axes: axes.len() }));
         }
         if channels == 0 || channels > MAX_CHANNELS {
-            return Err(LutError::Shape(format!(
-                "{channels} channels given, 1 to 16 allowed"
-            )));
+            return Err(LutError::Shape(ShapeError::ChannelCount { channels }));
         }
         let mut total = channels;
         for a in axes {
             total = total
                 .checked_mul(a.size)
                 .filter(|&t| t <= MAX_VALUES)
-                .ok_or_else(|| {
-                    LutError::Shape(format!("more than {MAX_VALUES} values in the table"))
-                })?;
+                .ok_or(LutError::Shape(ShapeError::TooManyValues))?;
         }
         Ok(total)
     }
@@ -281,13 +271,12 @@ impl Table {
         let dims = self.axes.len();
         let nc = self.channels.len();
         if coords.len() != dims || out.len() != nc {
-            return Err(LutError::Shape(format!(
-                "lookup with {} coordinates into {} outputs; the table has {} axes and {} channels",
-                coords.len(),
-                out.len(),
-                dims,
-                nc
-            )));
+            return Err(LutError::Shape(ShapeError::Lookup {
+                coordinates: coords.len(),
+                outputs: out.len(),
+                axes: dims,
+                channels: nc,
+            }));
         }
         let mut base = [0usize; MAX_AXES];
         let mut frac = [0.0f32; MAX_AXES];

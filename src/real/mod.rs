@@ -6,22 +6,24 @@
 //! | --- | --- |
 //! | `f64` | the reference: fits, tables, tests, error reports |
 //! | `f32` | CPU renderers and benchmarks |
-//! | [`wide::f32x8`] | eight samples per instruction for batch evaluation ([`simd`]) |
-//! | [`Traced`] | records the computation as a graph that prints as WGSL ([`traced`]) |
+//! | [`wide::f32x8`] | eight samples per instruction for batch evaluation ([`BatchReal`]) |
+//! | [`Traced`] | records the computation as a graph that prints as WGSL ([`trace`]) |
 //!
 //! Rules for generic code (they keep the traced graph equal to the CPU computation):
 //! no data-dependent control flow (use [`Real::select`], both arms must be safe to evaluate),
 //! fixed-count loops, constants written as `R::c(1.55)`. Control flow on the type-level
 //! constant [`Real::DOUBLE`] is allowed: it picks reference-grade approximations for `f64`.
 
-pub mod simd;
-pub mod traced;
+mod simd;
+mod traced;
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Sub, SubAssign};
 
+pub use simd::BatchReal;
 pub use traced::{
-    trace, trace_with, ArgType, Graph, Parameter, ResultType, Signature, StructType, Traced,
+    trace, trace_with, ArgType, Binary, Graph, Node, Parameter, ResultType, Signature, StructType,
+    Traced, TracedMask, Unary,
 };
 
 /// A scalar (or a SIMD vector of scalars, or a symbolic value) shading code computes with.

@@ -348,7 +348,8 @@ pub fn trace_with(signature: Signature, f: impl FnOnce(&[Traced]) -> Vec<Traced>
 }
 
 impl Graph {
-    /// The recorded nodes in evaluation order.
+    /// The recorded nodes in evaluation order (live or not; see [`Graph::count_binary`] for
+    /// counts of what the outputs depend on).
     pub fn nodes(&self) -> &[Node] {
         &self.nodes
     }
@@ -383,6 +384,16 @@ impl Graph {
             }
         }
         live
+    }
+
+    /// How many live nodes perform the unary operation `op` (for example exponentials).
+    pub fn count_unary(&self, op: Unary) -> usize {
+        let live = self.live();
+        self.nodes
+            .iter()
+            .zip(&live)
+            .filter(|(n, &l)| l && matches!(n, Node::Unary(o, _) if *o == op))
+            .count()
     }
 
     /// How many live nodes perform the binary operation `op` (for example multiplies).

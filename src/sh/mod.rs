@@ -5,11 +5,18 @@
 //! index `l (l + 1) + m`, `sin(|m| phi)` for m < 0 (the convention of google/spherical-harmonics,
 //! Sloan and DirectXMath). For example `Y(1, -1) = -0.4886025 y`.
 
-pub mod basis;
-pub mod projection;
-pub mod rotation;
-pub mod window;
+mod basis;
+mod gaunt;
+mod product;
+mod projection;
+mod rotation;
+mod wigner;
+mod window;
 
-pub mod gaunt;
-pub mod product;
-pub mod wigner;
+pub use basis::*;
+pub use gaunt::*;
+pub use product::*;
+pub use projection::*;
+pub use rotation::*;
+pub use wigner::*;
+pub use window::*;

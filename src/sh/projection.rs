@@ -97,7 +97,7 @@ pub fn lmax_of(n: usize) -> Result<usize, ParamError> {
 /// latitude-longitude map: row 0 is at the +Z pole, `theta = pi (j + 1/2) / height`; column 0
 /// starts at `phi = 0` (the +X axis) and `phi = 2 pi (i + 1/2) / width` grows towards +Y;
 /// direction `(sin theta cos phi, sin theta sin phi, cos theta)`. (For a Y-up map, rotate the
-/// projected coefficients with [`crate::sh::rotation`].)
+/// projected coefficients with [`crate::sh::rotate_bands012`] and the other rotations of [`crate::sh`].)
 pub fn lat_long_direction(width: usize, height: usize, i: usize, j: usize) -> DVec3 {
     let theta = PI * (j as f64 + 0.5) / height as f64;
     let phi = 2.0 * PI * (i as f64 + 0.5) / width as f64;

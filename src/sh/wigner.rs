@@ -85,6 +85,7 @@ impl fmt::Display for HalfInt {
 
 /// Why a string is not an integer or half-integer.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ParseHalfIntError {
     /// Not of the form `n`, `n/d` or a decimal number.
     #[error(

@@ -30,20 +30,20 @@ use hairmath::geometry::{
     azimuth_between, fibre_angles, local_direction, local_fibre_angles, local_sin_cos_theta,
     sin_cos_theta, FibreAngles, V3,
 };
-use hairmath::lobe::bessel::{i0, i0e_split, log_i0, log_i0e};
 use hairmath::lobe::{
     deon_lobe, deon_lobe_sample_cos_theta, gaussian_lobe, hg_gerard_printed, DeonLobe,
     HenyeyGreenstein,
 };
+use hairmath::lobe::{i0, i0e_split, log_i0, log_i0e};
 use hairmath::lut::axis_cell;
 use hairmath::params::{
     AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
 };
 use hairmath::real::{horner, pi, safe_asin, safe_sqrt, trace, wrap_angle, Graph, Real, Traced};
 use hairmath::real::{ArgType, Parameter, ResultType};
-use hairmath::sh::basis::{eval_sh, eval_sh_into};
-use hairmath::sh::product::{product, triple_product_integral, ProductPlan};
-use hairmath::sh::rotation::{rotate_band1, rotate_band2, rotate_bands012, rotate_zonal_into};
+use hairmath::sh::{eval_sh, eval_sh_into};
+use hairmath::sh::{product, triple_product_integral, ProductPlan};
+use hairmath::sh::{rotate_band1, rotate_band2, rotate_bands012, rotate_zonal_into};
 use std::collections::BTreeSet;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;

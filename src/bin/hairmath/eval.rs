@@ -4,7 +4,7 @@ use crate::flags::{model_names, ModelFlags};
 use crate::CliError;
 use clap::builder::PossibleValuesParser;
 use clap::Args;
-use hairmath::bcsdf::registry::model;
+use hairmath::bcsdf::find_model;
 use hairmath::bcsdf::{Bcsdf, Query};
 use hairmath::geometry::V3;
 use std::io::{self, BufRead, BufWriter, Write};
@@ -19,7 +19,7 @@ const REQUIRED: [&str; 7] = ["wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z", "h"
 /// Arguments of `hairmath eval`.
 #[derive(Args, Debug)]
 pub struct EvalArgs {
-    /// The scattering model (`hairmath::bcsdf::registry::MODELS`).
+    /// The scattering model (`hairmath::bcsdf::MODELS`).
     #[arg(long, default_value = "chiang", value_parser = PossibleValuesParser::new(model_names()))]
     model: String,
     /// The models' inputs.
@@ -30,7 +30,8 @@ pub struct EvalArgs {
 impl EvalArgs {
     /// Validates the flags and builds the model.
     fn model(&self) -> Result<Box<dyn Bcsdf<f64>>, CliError> {
-        let entry = model(&self.model).ok_or_else(|| CliError::UnknownModel(self.model.clone()))?;
+        let entry =
+            find_model(&self.model).ok_or_else(|| CliError::UnknownModel(self.model.clone()))?;
         let values = self.flags.values_for(entry)?;
         Ok((entry.build)(&values)?)
     }

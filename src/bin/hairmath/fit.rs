@@ -5,9 +5,9 @@ use std::io::{self, BufWriter, Write};
 use std::path::PathBuf;
 
 use clap::Args;
-use hairmath::fit::absorption_exponent::{absorption_report, TABLE_SIGMA_A};
-use hairmath::fit::frostbite::{frostbite_report, AttenuationErrorTable, TtGaussianTable};
-use hairmath::fit::generate::{all_fits, constants_source};
+use hairmath::fit::{absorption_report, TABLE_SIGMA_A};
+use hairmath::fit::{all_fits, constants_source};
+use hairmath::fit::{frostbite_report, AttenuationErrorTable, TtGaussianTable};
 use hairmath::fit::{ConstantFit, FitOutput, FitSettings};
 
 use crate::CliError;

@@ -1,5 +1,5 @@
 //! The command-line flags of the registered models' inputs
-//! ([`hairmath::bcsdf::registry::MODELS`]): one flag per input name, shared by every model
+//! ([`hairmath::bcsdf::MODELS`]): one flag per input name, shared by every model
 //! that has the input, spelled from the input's kind:
 //!
 //! | kind | flag |
@@ -16,8 +16,8 @@
 use crate::CliError;
 use clap::builder::PossibleValue;
 use clap::{Arg, ArgAction, ArgGroup, ArgMatches, Args, Command, FromArgMatches};
-use hairmath::bcsdf::registry::{ModelEntry, MODELS};
 use hairmath::bcsdf::{AbsorptionInput, Input, InputKind, InputValue, InputValues};
+use hairmath::bcsdf::{ModelEntry, MODELS};
 
 /// The ids of the three absorption flags, in the order the messages list them.
 const ABSORPTION_FLAGS: [&str; 3] = ["sigma_a", "melanin", "color"];

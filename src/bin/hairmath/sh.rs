@@ -9,8 +9,8 @@
 use crate::eval::{filter_csv, run_csv};
 use crate::CliError;
 use clap::Args;
-use hairmath::sh::gaunt::{gaunt_complex, gaunt_real};
-use hairmath::sh::wigner::{wigner_3j, HalfInt};
+use hairmath::sh::{gaunt_complex, gaunt_real};
+use hairmath::sh::{wigner_3j, HalfInt};
 
 /// Columns of `hairmath wigner3j`.
 const WIGNER_COLUMNS: [&str; 6] = ["j1", "j2", "j3", "m1", "m2", "m3"];
