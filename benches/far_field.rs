@@ -52,10 +52,10 @@ fn bench_np(c: &mut Criterion) {
         fast(
             &mut g,
             &format!("f64 {nodes} nodes"),
-            &ChiangFarField::<f64>::new(&params(), &rule),
+            &ChiangFarField::<f64>::with_rule(&params(), &rule),
             &xs,
         );
-        let far32 = ChiangFarField::<f32>::new(&params(), &rule);
+        let far32 = ChiangFarField::<f32>::with_rule(&params(), &rule);
         fast(&mut g, &format!("f32 {nodes} nodes"), &far32, &xs);
     }
     // The same N_p from a baked 32 x 16 x 4 table over (phi, theta_o, beta_n): 12 channels
@@ -111,7 +111,7 @@ fn bench_eval(c: &mut Criterion) {
     let mut g = c.benchmark_group("far_field_eval");
     g.throughput(Throughput::Elements(N as u64));
     let rule = FarFieldRule::gauss_legendre(32).expect("valid node count");
-    let far64 = ChiangFarField::<f64>::new(&params(), &rule);
+    let far64 = ChiangFarField::<f64>::with_rule(&params(), &rule);
     g.bench_function(BenchmarkId::new("eval", "f64 32 nodes"), |b| {
         b.iter(|| {
             for &(wi, wo) in &pairs {
@@ -119,7 +119,7 @@ fn bench_eval(c: &mut Criterion) {
             }
         })
     });
-    let far32 = ChiangFarField::<f32>::new(&params(), &rule);
+    let far32 = ChiangFarField::<f32>::with_rule(&params(), &rule);
     let pairs32: Vec<(V3<f32>, V3<f32>)> = pairs
         .iter()
         .map(|(a, b)| (V3::c(a.x, a.y, a.z), V3::c(b.x, b.y, b.z)))

@@ -74,7 +74,7 @@ fn standard_hair() -> ChiangHair<f64> {
 
 /// The far field of the standard flags with `n` nodes.
 fn standard_far(n: usize) -> ChiangFarField<f64> {
-    ChiangFarField::new(
+    ChiangFarField::with_rule(
         &standard_params(),
         &FarFieldRule::gauss_legendre(n).unwrap(),
     )

@@ -44,7 +44,7 @@ fn far_field_white_furnace_is_one() {
     let coarse = SphereRule::new(32, 8, 256);
     let rule = FarFieldRule::gauss_legendre(32).unwrap();
     for (bm, bn) in [(0.1, 0.1), (0.2, 0.9), (0.5, 0.5), (0.9, 0.2), (0.9, 0.9)] {
-        let far = ChiangFarField::<f64>::new(&params(bm, bn, [0.0; 3]), &rule);
+        let far = ChiangFarField::<f64>::with_rule(&params(bm, bn, [0.0; 3]), &rule);
         let sphere = if bm < 0.2 { &fine } else { &coarse };
         for wo in [dir(0.0, 0.4), dir(-60.0, 2.0), dir(85.0, 0.0)] {
             let albedo = sphere.integrate(|wi| far.eval(&Query::far(wi, wo))[2]);
@@ -100,7 +100,8 @@ fn fast_integrator_meets_its_documented_bound() {
     for &(bn, nodes, bound) in hairmath::bcsdf::FAR_FIELD_ERROR_BOUNDS {
         let p = params(0.3, bn, [0.0, 0.5, 10.0]);
         let hair = ChiangHair::<f64>::new(&p);
-        let far = ChiangFarField::<f64>::new(&p, &FarFieldRule::gauss_legendre(nodes).unwrap());
+        let far =
+            ChiangFarField::<f64>::with_rule(&p, &FarFieldRule::gauss_legendre(nodes).unwrap());
         let mut worst = 0.0_f64;
         for &theta in &[0.0_f64, 1.3, FRAC_PI_2 - 1e-4] {
             let (s, c) = (theta.sin(), theta.cos());
@@ -141,7 +142,7 @@ fn fast_integrator_meets_its_documented_bound() {
 /// With sigma_a = 0 every far-field sample has weight 1, and the sampler is finite everywhere.
 #[test]
 fn far_field_sample_weights_are_one() {
-    let far = ChiangFarField::<f64>::new(
+    let far = ChiangFarField::<f64>::with_rule(
         &params(0.3, 0.4, [0.0; 3]),
         &FarFieldRule::gauss_legendre(16).unwrap(),
     );

@@ -311,36 +311,33 @@ pub fn marschner_roots(path: MarschnerPath, phi: f64, eta_prime: f64) -> RootLis
     list
 }
 
-/// s-polarised reflectance for relative index `n` (transmitted over incident) at an angle of
-/// incidence with sine `sin_i`: `r_s = (cos_i - n cos_t) / (cos_i + n cos_t)`, Snell
-/// `sin_t = sin_i / n`; 1 under total internal reflection.
-fn reflectance_s(n: f64, sin_i: f64) -> f64 {
-    let cos_i = (1.0 - sin_i * sin_i).max(0.0).sqrt();
-    let sin_t = sin_i / n;
-    if sin_t.abs() >= 1.0 {
-        return 1.0;
-    }
-    let cos_t = (1.0 - sin_t * sin_t).sqrt();
-    let den = cos_i + n * cos_t;
-    if den <= 0.0 {
-        return 1.0;
-    }
-    ((cos_i - n * cos_t) / den).powi(2).min(1.0)
+/// The polarisations of Fresnel's equations.
+#[derive(Clone, Copy)]
+enum Polarisation {
+    /// s (perpendicular): `r_s = (cos_i - n cos_t) / (cos_i + n cos_t)`.
+    S,
+    /// p (parallel): `r_p = (n cos_i - cos_t) / (n cos_i + cos_t)`.
+    P,
 }
 
-/// p-polarised reflectance: `r_p = (n cos_i - cos_t) / (n cos_i + cos_t)`, same conventions.
-fn reflectance_p(n: f64, sin_i: f64) -> f64 {
+/// The reflectance `r^2` of one polarisation for relative index `n` (transmitted over
+/// incident) at an angle of incidence with sine `sin_i`, Snell `sin_t = sin_i / n`; 1 under
+/// total internal reflection.
+fn reflectance(polarisation: Polarisation, n: f64, sin_i: f64) -> f64 {
     let cos_i = (1.0 - sin_i * sin_i).max(0.0).sqrt();
     let sin_t = sin_i / n;
     if sin_t.abs() >= 1.0 {
         return 1.0;
     }
     let cos_t = (1.0 - sin_t * sin_t).sqrt();
-    let den = n * cos_i + cos_t;
+    let (num, den) = match polarisation {
+        Polarisation::S => (cos_i - n * cos_t, cos_i + n * cos_t),
+        Polarisation::P => (n * cos_i - cos_t, n * cos_i + cos_t),
+    };
     if den <= 0.0 {
         return 1.0;
     }
-    ((n * cos_i - cos_t) / den).powi(2).min(1.0)
+    (num / den).powi(2).min(1.0)
 }
 
 /// Marschner's two-index Fresnel factor `F(eta', eta'', gamma)` (Marschner 2003, appendix B):
@@ -356,7 +353,8 @@ fn reflectance_p(n: f64, sin_i: f64) -> f64 {
 /// eta = 1.55); the p-polarised entry term then "totally reflects" for `h > eta''`. This is
 /// a property of the virtual-index construction, kept as published.
 pub fn marschner_fresnel(eta_perp: f64, eta_par: f64, sin_gamma: f64) -> f64 {
-    0.5 * (reflectance_s(eta_perp, sin_gamma) + reflectance_p(eta_par, sin_gamma))
+    0.5 * (reflectance(Polarisation::S, eta_perp, sin_gamma)
+        + reflectance(Polarisation::P, eta_par, sin_gamma))
 }
 
 /// The indices and cosine Marschner's azimuthal problem uses at inclination theta_d.

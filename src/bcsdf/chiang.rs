@@ -143,10 +143,74 @@ impl ChiangUniforms<f64> {
     }
 }
 
-/// The Chiang 2016 model in the working precision `R`, reading its [`ChiangUniforms`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ChiangHair<R> {
+/// The Chiang 2016 model in the working precision `R`, reading its [`ChiangUniforms`], with the
+/// azimuthal factors taken across the fibre's width by the rule `O`: at the query's offset h
+/// ([`AtOffset`], the near field, the default) or averaged over fixed offsets
+/// ([`OffsetNodes`], the far field [`crate::bcsdf::ChiangFarField`]). Evaluation, lobes, pdf
+/// and sampling are written once for both.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChiangHair<R, O = AtOffset> {
     uniforms: ChiangUniforms<R>,
+    offsets: O,
+}
+
+/// What the azimuthal factors of a Chiang model depend on: wo's inclination (sine and cosine)
+/// and the relative azimuth `phi = phi_i - phi_o` of the lobes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Outgoing<R> {
+    /// sin theta_o.
+    pub sin_o: R,
+    /// cos theta_o >= 0.
+    pub cos_o: R,
+    /// phi_i - phi_o.
+    pub phi: R,
+}
+
+/// `(A_p N_p per channel, w_p N_p)` for the lobes R, TT, TRT and the residual: the azimuthal
+/// factors of the value and of the pdf (w_p the lobe-choice probabilities).
+pub type AzimuthalFactors<R> = ([[R; 3]; LOBES], [R; LOBES]);
+
+/// How a Chiang model takes the azimuthal factors across the fibre's width.
+pub trait Offsets<R: Real>: Clone {
+    /// Whether S depends on the query's offset h (the near field).
+    const NEAR_FIELD: bool;
+
+    /// The azimuthal factors of `hair` for `at`, at the offset `h` or averaged over offsets.
+    fn azimuthal<O>(&self, hair: &ChiangHair<R, O>, at: Outgoing<R>, h: R) -> AzimuthalFactors<R>;
+
+    /// The offset importance sampling draws at: `h` itself, or a node chosen by `u` in [0, 1).
+    fn sample_offset(&self, h: R, u: R) -> R;
+}
+
+/// An offset rule built in `f64` that can be rebuilt in any precision (what [`Model`] needs).
+pub trait OffsetsIn: Offsets<f64> {
+    /// The same rule in precision `S`.
+    type In<S: Real>: Offsets<S>;
+    /// The rule in precision `S` (its constants rounded once, or folded into traced code).
+    fn cast<S: Real>(&self) -> Self::In<S>;
+}
+
+/// The near field: the azimuthal factors at the query's offset h.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AtOffset;
+
+impl OffsetsIn for AtOffset {
+    type In<S: Real> = AtOffset;
+    fn cast<S: Real>(&self) -> AtOffset {
+        AtOffset
+    }
+}
+
+impl<R: Real> Offsets<R> for AtOffset {
+    const NEAR_FIELD: bool = true;
+
+    fn azimuthal<O>(&self, hair: &ChiangHair<R, O>, at: Outgoing<R>, h: R) -> AzimuthalFactors<R> {
+        hair.azimuthal_at(at, h)
+    }
+
+    fn sample_offset(&self, h: R, _u: R) -> R {
+        h
+    }
 }
 
 /// The factors of every lobe for one direction pair: the longitudinal `M_p`, and the azimuthal
@@ -191,14 +255,12 @@ impl<R: Real> LobeTerms<R> {
     }
 }
 
-/// sin and cos of theta_i and theta_o, and the lobes' relative azimuth phi_i - phi_o.
+/// sin and cos of theta_i, and what the azimuthal factors depend on ([`Outgoing`]).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PairAngles<R> {
     pub sin_i: R,
     pub cos_i: R,
-    pub sin_o: R,
-    pub cos_o: R,
-    pub phi: R,
+    pub out: Outgoing<R>,
 }
 
 impl<R: Real> PairAngles<R> {
@@ -208,23 +270,41 @@ impl<R: Real> PairAngles<R> {
         PairAngles {
             sin_i: a.sin_theta_i,
             cos_i: a.cos_theta_i,
-            sin_o: a.sin_theta_o,
-            cos_o: a.cos_theta_o,
-            phi: -a.phi,
+            out: Outgoing {
+                sin_o: a.sin_theta_o,
+                cos_o: a.cos_theta_o,
+                phi: -a.phi,
+            },
         }
     }
 }
 
 impl<R: Real> ChiangHair<R> {
-    /// The model of `params`: the uniforms derived once in `f64` ([`ChiangUniforms::new`]) and
-    /// rounded to `R`.
+    /// The near-field model of `params`: the uniforms derived once in `f64`
+    /// ([`ChiangUniforms::new`]) and rounded to `R`.
     pub fn new(params: &HairParams) -> Self {
         ChiangHair::<f64>::from_uniforms(ChiangUniforms::new(params)).instantiate()
     }
 
-    /// The model reading `uniforms` (rounded or symbolic: shader code receives them this way).
+    /// The near-field model reading `uniforms` (rounded or symbolic: shader code receives them
+    /// this way).
     pub fn from_uniforms(uniforms: ChiangUniforms<R>) -> Self {
-        ChiangHair { uniforms }
+        ChiangHair {
+            uniforms,
+            offsets: AtOffset,
+        }
+    }
+}
+
+impl<R: Real, O> ChiangHair<R, O> {
+    /// The model reading `uniforms` with the offset rule `offsets`.
+    pub(crate) fn with_offsets(uniforms: ChiangUniforms<R>, offsets: O) -> Self {
+        ChiangHair { uniforms, offsets }
+    }
+
+    /// The model's offset rule.
+    pub fn offsets(&self) -> &O {
+        &self.offsets
     }
 
     /// The model's uniforms.
@@ -285,43 +365,27 @@ impl<R: Real> ChiangHair<R> {
     /// M_p for p = 0..3 with the tilt of each lobe.
     pub(crate) fn longitudinal(&self, angles: &PairAngles<R>) -> [R; LOBES] {
         core::array::from_fn(|p| {
-            let (sin_op, cos_op) = self.tilted(p, angles.sin_o, angles.cos_o);
+            let (sin_op, cos_op) = self.tilted(p, angles.out.sin_o, angles.out.cos_o);
             self.lobe(p)
                 .0
                 .eval(angles.sin_i, angles.cos_i, sin_op, cos_op)
         })
     }
 
-    /// `A_p` per channel and `N_p` at offset `h` (clamped to [-1, 1]) for relative azimuth
-    /// `phi = phi_i - phi_o`: `N_p` is the trimmed logistic about the exit angle Phi(p) for
-    /// p < 3 (the three share one division, [`TrimmedLogistic::densities`]) and `1 / (2 pi)`
-    /// for the residual.
-    fn attenuations_and_azimuths(
-        &self,
-        sin_o: R,
-        cos_o: R,
-        phi: R,
-        h: R,
-    ) -> ([[R; 3]; LOBES], [R; LOBES]) {
-        let (path, a) = self.attenuations_at(sin_o, cos_o, h);
-        let dphi: [R; 3] = core::array::from_fn(|p| {
-            wrap_angle(phi - exit_angle(R::c(p as f64), path.gamma_o, path.gamma_t))
-        });
-        let [n0, n1, n2] = self.logistic().densities(dphi);
-        (a, [n0, n1, n2, R::c(0.5 * core::f64::consts::FRAC_1_PI)])
-    }
-
     /// The azimuthal factors at offset `h` (clamped to [-1, 1]) for relative azimuth
     /// `phi = phi_i - phi_o`: `(A_p N_p per channel, w_p N_p)`.
-    pub(crate) fn azimuthal(
-        &self,
-        sin_o: R,
-        cos_o: R,
-        phi: R,
-        h: R,
-    ) -> ([[R; 3]; LOBES], [R; LOBES]) {
-        let (a, n) = self.attenuations_and_azimuths(sin_o, cos_o, phi, h);
-        let w = Self::lobe_weights(&a);
+    /// `N_p` is the trimmed logistic about the exit angle Phi(p) for p < 3 (the three share one
+    /// division, [`TrimmedLogistic::densities`]) and `1 / (2 pi)` for the residual; `w_p` are
+    /// the lobe-choice probabilities of sampling (evaluation discards them, and the compiler
+    /// and the tracer drop their arithmetic).
+    pub(crate) fn azimuthal_at(&self, at: Outgoing<R>, h: R) -> AzimuthalFactors<R> {
+        let (path, a) = self.attenuations_at(at.sin_o, at.cos_o, h);
+        let dphi: [R; 3] = core::array::from_fn(|p| {
+            wrap_angle(at.phi - exit_angle(R::c(p as f64), path.gamma_o, path.gamma_t))
+        });
+        let [n0, n1, n2] = self.logistic().densities(dphi);
+        let n = [n0, n1, n2, R::c(0.5 * core::f64::consts::FRAC_1_PI)];
+        let w = lobe_weights(&a);
         (
             core::array::from_fn(|p| a[p].map(|x| x * n[p])),
             core::array::from_fn(|p| w[p] * n[p]),
@@ -329,14 +393,14 @@ impl<R: Real> ChiangHair<R> {
     }
 
     /// The lobe factors for a query and an azimuthal part computed by `azimuthal` from
-    /// (sin_o, cos_o, phi).
+    /// [`Outgoing`].
     pub(crate) fn terms_with(
         &self,
         query: &Query<R>,
-        azimuthal: impl FnOnce(R, R, R) -> ([[R; 3]; LOBES], [R; LOBES]),
+        azimuthal: impl FnOnce(Outgoing<R>) -> AzimuthalFactors<R>,
     ) -> LobeTerms<R> {
         let angles = PairAngles::of(query);
-        let (an, wn) = azimuthal(angles.sin_o, angles.cos_o, angles.phi);
+        let (an, wn) = azimuthal(angles.out);
         LobeTerms {
             m: self.longitudinal(&angles),
             an,
@@ -344,29 +408,13 @@ impl<R: Real> ChiangHair<R> {
         }
     }
 
-    fn terms(&self, query: &Query<R>) -> LobeTerms<R> {
-        self.terms_with(query, |sin_o, cos_o, phi| {
-            self.azimuthal(sin_o, cos_o, phi, query.h)
-        })
-    }
-
-    /// Probability of choosing each lobe when sampling from wo: the channel-averaged A_p,
-    /// normalised (pbrt-v4 `ApPDF`).
-    fn lobe_weights(a: &[[R; 3]; LOBES]) -> [R; LOBES] {
-        let avg = a.map(|ch| (ch[0] + ch[1] + ch[2]) * R::c(1.0 / 3.0));
-        let total = (avg[0] + avg[1] + avg[2] + avg[3]).max(R::c(1e-30));
-        avg.map(|x| x / total)
-    }
-
-    /// The direction [`SampledBcsdf::sample`] draws, without evaluating S and the pdf there:
-    /// `u.lobe` chooses the lobe (and, remapped, the azimuth), `u.longitudinal` the angle about
-    /// the lobe's axis, `u.cone` the azimuth of the longitudinal cone (d'Eon 2013; pbrt-v4
-    /// `Sample_f`). `u.offset` is not used.
+    /// The direction [`SampledBcsdf::sample`] draws at offset `h`, without evaluating S and
+    /// the pdf there (`u.offset` is not used here).
     pub(crate) fn sample_direction(&self, wo: V3<R>, h: R, u: &RandomNumbers<R>) -> V3<R> {
         let one = R::c(1.0);
         let (sin_o, cos_o) = local_sin_cos_theta(wo);
         let (path, a) = self.attenuations_at(sin_o, cos_o, h);
-        let w = Self::lobe_weights(&a);
+        let w = lobe_weights(&a);
 
         // Choose p: the first lobe whose cumulative weight exceeds uc; remap uc into it.
         let uc = u.lobe.clamp(R::c(0.0), one);
@@ -417,29 +465,35 @@ impl<R: Real> ChiangHair<R> {
     }
 }
 
-impl<R: Real> Bcsdf<R> for ChiangHair<R> {
+/// Probability of choosing each lobe when sampling from wo: the channel-averaged A_p,
+/// normalised (pbrt-v4 `ApPDF`).
+fn lobe_weights<R: Real>(a: &[[R; 3]; LOBES]) -> [R; LOBES] {
+    let avg = a.map(|ch| (ch[0] + ch[1] + ch[2]) * R::c(1.0 / 3.0));
+    let total = (avg[0] + avg[1] + avg[2] + avg[3]).max(R::c(1e-30));
+    avg.map(|x| x / total)
+}
+
+impl<R: Real, O: Offsets<R>> ChiangHair<R, O> {
+    /// The lobe factors of a query, the azimuthal ones by the offset rule.
+    fn terms(&self, query: &Query<R>) -> LobeTerms<R> {
+        self.terms_with(query, |at| self.offsets.azimuthal(self, at, query.h))
+    }
+}
+
+impl<R: Real, O: Offsets<R>> Bcsdf<R> for ChiangHair<R, O> {
     fn lobe_names(&self) -> &'static [&'static str] {
         &CHIANG_LOBES
     }
 
     fn uses_offset(&self) -> bool {
-        true
+        O::NEAR_FIELD
     }
 
     /// `S(wi, wo, h)` per channel for unit `wi`, `wo` in the local frame and offset `h` in
-    /// [-1, 1] (clamped). No cosine factor (see the module documentation). Finite and
-    /// non-negative for every finite input.
+    /// [-1, 1] (clamped; ignored by the far field). No cosine factor (see the module
+    /// documentation). Finite and non-negative for every finite input.
     fn eval(&self, query: &Query<R>) -> [R; 3] {
-        // `terms(..).value()` without the lobe weights, which only the pdf needs.
-        let angles = PairAngles::of(query);
-        let (a, n) =
-            self.attenuations_and_azimuths(angles.sin_o, angles.cos_o, angles.phi, query.h);
-        LobeTerms {
-            m: self.longitudinal(&angles),
-            an: core::array::from_fn(|p| a[p].map(|x| x * n[p])),
-            wn: [R::c(0.0); LOBES],
-        }
-        .value()
+        self.terms(query).value()
     }
 
     /// `M_p A_p N_p` of each lobe (R, TT, TRT, residual) per channel.
@@ -448,17 +502,19 @@ impl<R: Real> Bcsdf<R> for ChiangHair<R> {
     }
 }
 
-impl<R: Real> SampledBcsdf<R> for ChiangHair<R> {
+impl<R: Real, O: Offsets<R>> SampledBcsdf<R> for ChiangHair<R, O> {
     /// The density of [`SampledBcsdf::sample`]: `sum_p M_p w_p N_p` with the lobe-choice
-    /// probabilities w_p of pbrt-v4's `ApPDF`.
+    /// probabilities w_p of pbrt-v4's `ApPDF` (averaged over the offsets for the far field).
     fn pdf(&self, query: &Query<R>) -> R {
         self.terms(query).pdf()
     }
 
-    /// Importance-samples wi given wo and h (d'Eon 2013; pbrt-v4 `Sample_f`; see
-    /// `sample_direction` for which number draws what). Branch-free, so it traces.
+    /// Importance-samples wi given wo and h (d'Eon 2013; pbrt-v4 `Sample_f`): the far field
+    /// first picks an offset node with `u.offset`; then `u.lobe` chooses the lobe (and,
+    /// remapped, the azimuth), `u.longitudinal` the angle about the lobe's axis, `u.cone` the
+    /// azimuth of the longitudinal cone. Branch-free, so it traces.
     fn sample(&self, wo: V3<R>, h: R, u: RandomNumbers<R>) -> HairSample<R> {
-        let wi = self.sample_direction(wo, h, &u);
+        let wi = self.sample_direction(wo, self.offsets.sample_offset(h, u.offset), &u);
         let terms = self.terms(&Query::new(wi, wo, h));
         HairSample {
             wi,
@@ -468,16 +524,21 @@ impl<R: Real> SampledBcsdf<R> for ChiangHair<R> {
     }
 }
 
-impl Model for ChiangHair<f64> {
+impl<O: OffsetsIn> Model for ChiangHair<f64, O> {
     type Uniforms<R: Real> = ChiangUniforms<R>;
-    type In<R: Real> = ChiangHair<R>;
+    type In<R: Real> = ChiangHair<R, O::In<R>>;
 
     fn uniforms(&self) -> ChiangUniforms<f64> {
         self.uniforms
     }
 
-    fn with_uniforms<R: Real>(&self, uniforms: ChiangUniforms<R>) -> ChiangHair<R> {
-        ChiangHair::from_uniforms(uniforms)
+    /// The model reading `uniforms`; the offset rule's constants (the far field's nodes) are
+    /// rounded to `R` (folded into traced code).
+    fn with_uniforms<R: Real>(&self, uniforms: ChiangUniforms<R>) -> ChiangHair<R, O::In<R>> {
+        ChiangHair {
+            uniforms,
+            offsets: self.offsets.cast(),
+        }
     }
 }
 

@@ -19,9 +19,11 @@
 //! exactly the returned pdf. Its distance from the exact far field is the rule's integration
 //! error, measured against the reference (README).
 
-use super::chiang::{ChiangHair, ChiangUniforms, LobeTerms, PairAngles, CHIANG_LOBES};
+use super::chiang::{
+    AzimuthalFactors, ChiangHair, LobeTerms, Offsets, OffsetsIn, Outgoing, PairAngles, CHIANG_LOBES,
+};
 use super::inputs::{FromInputs, Input, InputKind, InputValues, HAIR_INPUTS};
-use super::model::{Bcsdf, HairSample, Model, Query, RandomNumbers, SampledBcsdf};
+use super::model::{Bcsdf, Query};
 use crate::azimuthal::{exit_angle, refracted_offset, LOBES};
 use crate::error::ParamError;
 use crate::geometry::V3;
@@ -85,25 +87,18 @@ impl FarFieldRule {
     }
 }
 
-/// The far-field Chiang model with a fixed-node integrator over h, in the working precision `R`.
+/// The offsets of the far field: fixed nodes (h_k, P_k) of a [`FarFieldRule`] in the working
+/// precision, over which the azimuthal factors are averaged ([`Offsets`]).
 #[derive(Clone, Debug, PartialEq)]
-pub struct ChiangFarField<R> {
-    hair: ChiangHair<R>,
-    /// (h_k, P_k) rounded to R.
+pub struct OffsetNodes<R> {
+    /// (h_k, P_k), the weights summing to 1.
     nodes: Vec<(R, R)>,
 }
 
-impl<R: Real> ChiangFarField<R> {
-    /// The far field of the hair `params` integrated with `rule`: the uniforms of
-    /// [`ChiangHair::new`] and the rule's nodes, rounded to `R`.
-    pub fn new(params: &HairParams, rule: &FarFieldRule) -> Self {
-        Self::from_parts(ChiangHair::new(params), rule)
-    }
-
-    /// The far field of `hair` integrated with `rule`.
-    fn from_parts(hair: ChiangHair<R>, rule: &FarFieldRule) -> Self {
-        ChiangFarField {
-            hair,
+impl<R: Real> OffsetNodes<R> {
+    /// The nodes of `rule` rounded to `R`.
+    pub fn new(rule: &FarFieldRule) -> Self {
+        OffsetNodes {
             nodes: rule
                 .nodes
                 .iter()
@@ -111,20 +106,31 @@ impl<R: Real> ChiangFarField<R> {
                 .collect(),
         }
     }
+}
 
-    /// The near-field model this averages.
-    pub fn near_field(&self) -> &ChiangHair<R> {
-        &self.hair
+impl OffsetsIn for OffsetNodes<f64> {
+    type In<S: Real> = OffsetNodes<S>;
+    fn cast<S: Real>(&self) -> OffsetNodes<S> {
+        OffsetNodes {
+            nodes: self
+                .nodes
+                .iter()
+                .map(|&(h, p)| (S::c(h), S::c(p)))
+                .collect(),
+        }
     }
+}
 
-    /// `(N_p A_p per channel, w_p N_p)` averaged over the rule's offsets, for relative azimuth
-    /// `phi = phi_i - phi_o` and the inclination of wo. `N_p` here includes the attenuation:
-    /// `1/2 int A_p(h) D(phi - Phi(p, h)) dh`.
-    pub fn azimuthal(&self, sin_o: R, cos_o: R, phi: R) -> ([[R; 3]; LOBES], [R; LOBES]) {
+impl<R: Real> Offsets<R> for OffsetNodes<R> {
+    const NEAR_FIELD: bool = false;
+
+    /// `(N_p A_p per channel, w_p N_p)` averaged over the nodes: `N_p` here includes the
+    /// attenuation, `1/2 int A_p(h) D(phi - Phi(p, h)) dh`; `h` is ignored.
+    fn azimuthal<O>(&self, hair: &ChiangHair<R, O>, at: Outgoing<R>, _h: R) -> AzimuthalFactors<R> {
         let mut an = [[R::c(0.0); 3]; LOBES];
         let mut wn = [R::c(0.0); LOBES];
         for &(h, weight) in &self.nodes {
-            let (a, w) = self.hair.azimuthal(sin_o, cos_o, phi, h);
+            let (a, w) = hair.azimuthal_at(at, h);
             for p in 0..LOBES {
                 for c in 0..3 {
                     an[p][c] += weight * a[p][c];
@@ -135,77 +141,41 @@ impl<R: Real> ChiangFarField<R> {
         (an, wn)
     }
 
-    fn terms(&self, query: &Query<R>) -> LobeTerms<R> {
-        self.hair
-            .terms_with(query, |sin_o, cos_o, phi| self.azimuthal(sin_o, cos_o, phi))
-    }
-}
-
-impl<R: Real> Bcsdf<R> for ChiangFarField<R> {
-    fn lobe_names(&self) -> &'static [&'static str] {
-        &CHIANG_LOBES
-    }
-
-    fn uses_offset(&self) -> bool {
-        false
-    }
-
-    /// `S(wi, wo)` per channel, for unit directions in the local frame (tangent +X); `query.h`
-    /// is ignored. No cosine factor: with sigma_a = 0 its integral over all wi is 1.
-    fn eval(&self, query: &Query<R>) -> [R; 3] {
-        self.terms(query).value()
-    }
-
-    /// `M_p N_p` of each lobe (R, TT, TRT, residual) per channel.
-    fn eval_lobes(&self, query: &Query<R>) -> Vec<[R; 3]> {
-        self.terms(query).per_lobe()
-    }
-}
-
-impl<R: Real> SampledBcsdf<R> for ChiangFarField<R> {
-    /// The density of [`SampledBcsdf::sample`]; `query.h` is ignored.
-    fn pdf(&self, query: &Query<R>) -> R {
-        self.terms(query).pdf()
-    }
-
-    /// Samples wi given wo: `u.offset` picks an offset node with probability P_k, then the
-    /// near-field sampler draws from the other numbers at that offset; `h` is ignored.
-    /// Branch-free (the node is chosen by selects), so it traces.
-    fn sample(&self, wo: V3<R>, _h: R, u: RandomNumbers<R>) -> HairSample<R> {
-        // Node k is chosen when P_0 + ... + P_{k-1} <= uh < P_0 + ... + P_k.
+    /// Node k is chosen with probability P_k: when P_0 + ... + P_{k-1} <= u < P_0 + ... + P_k
+    /// (by selects, so it traces).
+    fn sample_offset(&self, _h: R, u: R) -> R {
         let (mut h, mut lower) = self.nodes[0];
         for &(node_h, weight) in &self.nodes[1..] {
-            h = R::select(lower.le(u.offset), node_h, h);
+            h = R::select(lower.le(u), node_h, h);
             lower += weight;
         }
-        let wi = self.hair.sample_direction(wo, h, &u);
-        let terms = self.terms(&Query::far(wi, wo));
-        HairSample {
-            wi,
-            value: terms.value(),
-            pdf: terms.pdf(),
-        }
+        h
     }
 }
 
-impl Model for ChiangFarField<f64> {
-    type Uniforms<R: Real> = ChiangUniforms<R>;
-    type In<R: Real> = ChiangFarField<R>;
+/// The far-field Chiang model with a fixed-node integrator over h, in the working precision
+/// `R`: the near-field model with its azimuthal factors averaged over the rule's offsets.
+pub type ChiangFarField<R> = ChiangHair<R, OffsetNodes<R>>;
 
-    fn uniforms(&self) -> ChiangUniforms<f64> {
-        *self.hair.uniforms()
+impl<R: Real> ChiangHair<R, OffsetNodes<R>> {
+    /// The far field of the hair `params` integrated with `rule`: the uniforms of
+    /// [`ChiangHair::new`] and the rule's nodes, rounded to `R`.
+    pub fn with_rule(params: &HairParams, rule: &FarFieldRule) -> Self {
+        let near = ChiangHair::<R>::new(params);
+        ChiangHair::with_offsets(*near.uniforms(), OffsetNodes::new(rule))
     }
 
-    /// The far field reading `uniforms`; the rule's nodes become constants.
-    fn with_uniforms<R: Real>(&self, uniforms: ChiangUniforms<R>) -> ChiangFarField<R> {
-        ChiangFarField {
-            hair: ChiangHair::from_uniforms(uniforms),
-            nodes: self
-                .nodes
-                .iter()
-                .map(|&(h, p)| (R::c(h), R::c(p)))
-                .collect(),
-        }
+    /// The near-field model this averages.
+    pub fn near_field(&self) -> ChiangHair<R> {
+        ChiangHair::from_uniforms(*self.uniforms())
+    }
+
+    /// `(N_p A_p per channel, w_p N_p)` averaged over the rule's offsets, for relative azimuth
+    /// `phi = phi_i - phi_o` and the inclination of wo. `N_p` here includes the attenuation:
+    /// `1/2 int A_p(h) D(phi - Phi(p, h)) dh`.
+    pub fn azimuthal(&self, sin_o: R, cos_o: R, phi: R) -> AzimuthalFactors<R> {
+        let at = Outgoing { sin_o, cos_o, phi };
+        self.offsets().azimuthal(self, at, R::c(0.0))
     }
 }
 
@@ -248,16 +218,6 @@ impl Bcsdf<f64> for ReferenceFarField {
         &CHIANG_LOBES
     }
 
-    fn uses_offset(&self) -> bool {
-        false
-    }
-
-    fn eval(&self, query: &Query<f64>) -> [f64; 3] {
-        self.hair
-            .far_field_reference(query.wi, query.wo, self.rel_tol)
-            .value
-    }
-
     fn eval_lobes(&self, query: &Query<f64>) -> Vec<[f64; 3]> {
         self.hair
             .far_field_reference(query.wi, query.wo, self.rel_tol)
@@ -294,9 +254,6 @@ impl FarField {
 impl Bcsdf<f64> for FarField {
     fn lobe_names(&self) -> &'static [&'static str] {
         self.model().lobe_names()
-    }
-    fn uses_offset(&self) -> bool {
-        false
     }
     fn eval(&self, query: &Query<f64>) -> [f64; 3] {
         self.model().eval(query)
@@ -345,7 +302,7 @@ impl FromInputs for FarField {
             )?));
         }
         let rule = FarFieldRule::gauss_legendre(values.count("nodes")?)?;
-        Ok(FarField::Rule(ChiangFarField::new(&params, &rule)))
+        Ok(FarField::Rule(ChiangFarField::with_rule(&params, &rule)))
     }
 }
 
@@ -415,7 +372,7 @@ impl ChiangHair<f64> {
         let half_pi = core::f64::consts::FRAC_PI_2;
         let (flat, error) = adaptive(
             |gamma| {
-                let (an, _) = self.azimuthal(sin_o, cos_o, phi, gamma.sin());
+                let (an, _) = self.azimuthal_at(Outgoing { sin_o, cos_o, phi }, gamma.sin());
                 let weight = 0.5 * gamma.cos();
                 let mut out = [0.0; 3 * LOBES];
                 for p in 0..LOBES {
@@ -441,8 +398,12 @@ impl ChiangHair<f64> {
     /// [`ChiangHair::far_field_azimuthal_reference`]).
     pub fn far_field_reference(&self, wi: V3<f64>, wo: V3<f64>, rel_tol: f64) -> FarFieldReference {
         let angles = PairAngles::of(&Query::far(wi, wo));
-        let (azimuthal, error) =
-            self.far_field_azimuthal_reference(angles.sin_o, angles.cos_o, angles.phi, rel_tol);
+        let (azimuthal, error) = self.far_field_azimuthal_reference(
+            angles.out.sin_o,
+            angles.out.cos_o,
+            angles.out.phi,
+            rel_tol,
+        );
         let terms = LobeTerms {
             m: self.longitudinal(&angles),
             an: azimuthal,

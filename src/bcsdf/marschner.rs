@@ -74,15 +74,6 @@ impl Bcsdf<f64> for Marschner2003 {
         &MARSCHNER_LOBES
     }
 
-    fn uses_offset(&self) -> bool {
-        false
-    }
-
-    fn eval(&self, query: &Query<f64>) -> [f64; 3] {
-        let lobes = self.eval_lobes(query);
-        core::array::from_fn(|c| lobes.iter().map(|l| l[c]).sum())
-    }
-
     /// `M_p(theta_h) N_p(phi) cos(theta_i) / cos^2(theta_d)` per lobe and channel, with
     /// `cos^2(theta_d)` floored at 1e-12.
     fn eval_lobes(&self, query: &Query<f64>) -> Vec<[f64; 3]> {

@@ -81,18 +81,29 @@ pub trait Bcsdf<R: Real> {
     /// `TRT`, `residual`).
     fn lobe_names(&self) -> &'static [&'static str];
 
-    /// Whether S depends on the offset h: true for near-field models; far-field models ignore
-    /// [`Query::h`].
-    fn uses_offset(&self) -> bool;
-
-    /// `S(wi, wo, h)` per linear RGB channel, with no cosine factor: the radiance scattered
-    /// towards `wo` is `int S(wi, wo) L(wi) dwi` over solid angle. Finite and non-negative
-    /// for every finite query.
-    fn eval(&self, query: &Query<R>) -> [R; 3];
-
     /// The contribution of each lobe of [`Bcsdf::lobe_names`] per channel; they sum to
     /// [`Bcsdf::eval`].
     fn eval_lobes(&self, query: &Query<R>) -> Vec<[R; 3]>;
+
+    /// Whether S depends on the offset h: true for near-field models (which override this);
+    /// far-field models ignore [`Query::h`].
+    fn uses_offset(&self) -> bool {
+        false
+    }
+
+    /// `S(wi, wo, h)` per linear RGB channel, with no cosine factor: the radiance scattered
+    /// towards `wo` is `int S(wi, wo) L(wi) dwi` over solid angle. Finite and non-negative
+    /// for every finite query. By default the sum of [`Bcsdf::eval_lobes`] (models override it
+    /// to avoid the allocation).
+    fn eval(&self, query: &Query<R>) -> [R; 3] {
+        let mut sum = [R::c(0.0); 3];
+        for lobe in self.eval_lobes(query) {
+            for (s, v) in sum.iter_mut().zip(lobe) {
+                *s += v;
+            }
+        }
+        sum
+    }
 }
 
 /// A model with importance sampling.

@@ -830,7 +830,7 @@ traced_tests! {
     chiang_uniforms [
         "ChiangHair::from_uniforms", "ChiangHair::eta", "ChiangHair::lobe_names",
         "ChiangHair::uses_offset", "ChiangHair::with_uniforms", "UniformValue::push_to",
-        "UniformValue::take_from"
+        "UniformValue::take_from", "AtOffset::cast"
     ] {
         let model = ChiangHair::new(&HairParams::default());
         model_case!("ChiangHair::from_uniforms", model, vec![], ResultType::Scalars, rows(|g| g.hair()), |m, _x| {
@@ -839,7 +839,8 @@ traced_tests! {
         });
     }
     chiang_eval [
-        "ChiangHair::eval", "LobeTerms::value", "PairAngles::of", "query_of", "Query::new"
+        "ChiangHair::eval", "LobeTerms::value", "PairAngles::of", "query_of", "Query::new",
+        "AtOffset::azimuthal"
     ] {
         // Through the library's own shader entry point: (uniforms, wi, wo, h) -> vec3.
         let model = ChiangHair::new(&HairParams::default());
@@ -874,7 +875,7 @@ traced_tests! {
             vec![m.pdf(&query_of(x))]
         });
     }
-    chiang_sample ["ChiangHair::sample"] {
+    chiang_sample ["ChiangHair::sample", "AtOffset::sample_offset"] {
         // Uniforms, wo, h, then the four numbers.
         let inputs = rows(|g| [&g.hair()[..], &g.dir(), &[g.pick(&SIN)], &g.numbers()].concat());
         let model = ChiangHair::new(&HairParams::default());
@@ -885,16 +886,15 @@ traced_tests! {
     }
 
     far_field [
-        "ChiangFarField::new", "ChiangFarField::near_field", "ChiangFarField::azimuthal",
-        "ChiangFarField::eval", "ChiangFarField::eval_lobes", "ChiangFarField::pdf",
-        "ChiangFarField::lobe_names", "ChiangFarField::uses_offset",
-        "ChiangFarField::with_uniforms", "Query::far"
+        "ChiangHair::with_rule", "ChiangHair::near_field", "ChiangHair::azimuthal",
+        "ChiangHair::offsets", "OffsetNodes::new", "OffsetNodes::azimuthal", "OffsetNodes::cast",
+        "Query::far"
     ] {
         // The rule's nodes are folded into the shader as constants: one trace per node count
         // (1 node and a small rule keep the WGSL short; the loop is the same for more).
         for nodes in [1, 4] {
             let rule = FarFieldRule::gauss_legendre(nodes).unwrap();
-            let model = ChiangFarField::new(&HairParams::default(), &rule);
+            let model = ChiangFarField::with_rule(&HairParams::default(), &rule);
             assert!(trace_eval(&model).to_wgsl("far").contains("wo: vec3<f32>) -> vec3<f32>"));
             let name = format!("ChiangFarField::eval({nodes} nodes)");
             model_case!(name, model, query_parameters(false), ResultType::Scalars, rows(|g| [g.hair(), g.pair()].concat()), |ff, x| {
@@ -916,16 +916,16 @@ traced_tests! {
         // The constructor in f32 is the f64 model rounded: the same bits as `instantiate`.
         let rule = FarFieldRule::gauss_legendre(4).unwrap();
         let q = Query::far(V3::c(0.0, 1.0, 0.0), V3::c(0.6, 0.0, 0.8));
-        let direct = ChiangFarField::<f32>::new(&HairParams::default(), &rule).eval(&q);
-        let rounded = ChiangFarField::new(&HairParams::default(), &rule).instantiate::<f32>().eval(&q);
+        let direct = ChiangFarField::<f32>::with_rule(&HairParams::default(), &rule).eval(&q);
+        let rounded = ChiangFarField::with_rule(&HairParams::default(), &rule).instantiate::<f32>().eval(&q);
         assert_eq!(direct, rounded);
     }
-    far_field_sample ["ChiangFarField::sample"] {
+    far_field_sample ["OffsetNodes::sample_offset"] {
         // Uniforms, wo, h (ignored), then the four numbers (the last picks the offset node).
         for nodes in [1, 4] {
             let rule = FarFieldRule::gauss_legendre(nodes).unwrap();
             let inputs = rows(|g| [&g.hair()[..], &g.dir(), &[g.pick(&SIN)], &g.numbers()].concat());
-            let model = ChiangFarField::new(&HairParams::default(), &rule);
+            let model = ChiangFarField::with_rule(&HairParams::default(), &rule);
             let name = format!("ChiangFarField::sample({nodes} nodes)");
             model_case!(name, model, sample_parameters(), ResultType::Scalars, inputs, |ff, x| {
                 let s = ff.sample(v3(x), x[3], numbers(&x[4..]));

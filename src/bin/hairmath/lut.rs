@@ -29,6 +29,7 @@ pub enum LutKind {
 
 /// Arguments of `hairmath lut`. Flags shared with `hairmath eval` mean the same there.
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct LutArgs {
     /// The table to bake.
     #[arg(long, value_enum)]
@@ -39,7 +40,7 @@ pub struct LutArgs {
     #[arg(long, value_delimiter = ',')]
     size: Vec<usize>,
     /// Relative index of refraction eta, in (1, 3].
-    #[arg(long, default_value_t = 1.55, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 1.55)]
     eta: f64,
     /// Absorption per unit fibre radius, linear RGB, or one value for all channels (nguyen-n
     /// and far-field; gerard uses 0).
@@ -47,31 +48,21 @@ pub struct LutArgs {
     sigma_a: [f64; 3],
     /// Width beta_R of Marschner's R lobe in degrees, in (0, 45] (nguyen-m); beta_TT =
     /// beta_R/2, beta_TRT = 2 beta_R.
-    #[arg(
-        long,
-        value_name = "DEGREES",
-        default_value_t = 7.5,
-        allow_hyphen_values = true
-    )]
+    #[arg(long, value_name = "DEGREES", default_value_t = 7.5)]
     beta_r_deg: f64,
     /// Shift alpha_R of Marschner's R lobe in degrees, |alpha_R| <= 22.5 (nguyen-m); alpha_TT
     /// = -alpha_R/2, alpha_TRT = -3 alpha_R/2.
-    #[arg(long, value_name = "DEGREES", default_value_t = -5.0, allow_hyphen_values = true)]
+    #[arg(long, value_name = "DEGREES", default_value_t = -5.0)]
     alpha_r_deg: f64,
     /// The range MIN,MAX of azimuthal roughness beta_n (each in (0, 1]) of the far-field
     /// table's third axis.
     #[arg(long, value_name = "MIN,MAX", value_parser = parse_floats::<2>, default_value = "0.2,0.8", allow_hyphen_values = true)]
     beta_n_range: [f64; 2],
     /// Largest theta_d of the gerard table, degrees, in (0, 90].
-    #[arg(
-        long,
-        value_name = "DEGREES",
-        default_value_t = 90.0,
-        allow_hyphen_values = true
-    )]
+    #[arg(long, value_name = "DEGREES", default_value_t = 90.0)]
     theta_d_max_deg: f64,
     /// Relative tolerance of the far-field reference integrals, in [1e-12, 1e-2].
-    #[arg(long, default_value_t = 1e-6, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 1e-6)]
     rel_tol: f64,
     /// Leave out Marschner's TRT caustic treatment (nguyen-n, gerard).
     #[arg(long)]

@@ -414,7 +414,7 @@ fn ns_per_eval<R: Real>(params: &HairParams, calls: usize) -> f64 {
 fn far_model(beta_n: f64, sigma_a: [f64; 3]) -> Result<ChiangFarField<f64>, CliError> {
     let params = hair_with(BETA, beta_n, sigma_a)?;
     let rule = FarFieldRule::gauss_legendre(FAR_NODES)?;
-    Ok(ChiangFarField::new(&params, &rule))
+    Ok(ChiangFarField::with_rule(&params, &rule))
 }
 
 /// The far-field lobe-energy table, one row per hair colour, with the largest difference
@@ -470,7 +470,7 @@ fn far_furnace(out: &mut impl Write, s: &Settings) -> Result<(), CliError> {
     for beta in FURNACE_BETAS {
         let params = hair(beta, [0.0; 3])?;
         let rule = FarFieldRule::gauss_legendre(FAR_NODES)?;
-        let model = ChiangFarField::<f64>::new(&params, &rule);
+        let model = ChiangFarField::<f64>::with_rule(&params, &rule);
         let sphere_rule = if beta < 0.2 { &sharp } else { &smooth };
         let worst = worst_furnace(sphere_rule, s.furnace_theta_o_deg, &[0.0], |wi, wo, _| {
             model.eval(&Query::far(wi, wo))[1]
@@ -569,7 +569,7 @@ fn fast_values(
     grid: &[GridPoint],
 ) -> Result<Vec<Azimuthal>, CliError> {
     let rule = FarFieldRule::gauss_legendre(n)?;
-    let far = ChiangFarField::<f64>::new(params, &rule);
+    let far = ChiangFarField::<f64>::with_rule(params, &rule);
     Ok(grid
         .iter()
         .map(|&(s, c, phi)| far.azimuthal(s, c, phi).0)
@@ -614,7 +614,7 @@ fn refinement(
 fn ns_per_azimuthal(n: usize, grid: &[GridPoint], node_evals: usize) -> Result<f64, CliError> {
     let params = hair_with(BETA, BETA, INTEGRATOR_SIGMA_A)?;
     let rule = FarFieldRule::gauss_legendre(n)?;
-    let far = ChiangFarField::<f64>::new(&params, &rule);
+    let far = ChiangFarField::<f64>::with_rule(&params, &rule);
     let calls = (node_evals / n).max(grid.len()).max(1);
     let start = Instant::now();
     for k in 0..calls {
