@@ -41,13 +41,17 @@ fn timing_query<R: TimingScalar>(k: usize) -> Query<R> {
     )
 }
 
-/// Mean wall-clock nanoseconds per call of `call(k)` over `calls` calls (`k` = 0, 1, ...).
+/// Mean wall-clock nanoseconds per call of `call(k)` over `calls` calls (`k` = 0, 1, ...); 0
+/// when `calls` is 0.
 pub(crate) fn ns_per_call(calls: usize, mut call: impl FnMut(usize)) -> f64 {
+    if calls == 0 {
+        return 0.0;
+    }
     let start = Instant::now();
     for k in 0..calls {
         call(k);
     }
-    start.elapsed().as_nanos() as f64 / calls.max(1) as f64
+    start.elapsed().as_nanos() as f64 / calls as f64
 }
 
 /// Mean wall-clock nanoseconds of one [`Bcsdf::eval`] of `model` in precision `R`, over
