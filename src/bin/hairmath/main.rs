@@ -52,7 +52,7 @@ enum Command {
     /// On the first bad row the program reports the line number (the header is line 1) on
     /// stderr and exits with status 2; rows before it have already been written.
     Eval(eval::EvalArgs),
-    /// Print a markdown report: lobe energies of a few hair colours, a white-furnace check of
+    /// Print a report (markdown, or JSON with --json): lobe energies of a few hair colours, a white-furnace check of
     /// the model and an indicative evaluation speed, for the near and the far field, and the
     /// accuracy and cost of the far field's fixed-node integrator against its reference.
     ///

@@ -43,6 +43,9 @@ pub struct ReportArgs {
     ///   `beta_n`, `reference_us`, `reference_refinement`, `errors`, a list of `nodes`, `max`,
     ///   `mean`) and `timings` (a list of `nodes`, `ns`).
     /// - `fitted_constants`: the rows of `hairmath fit --json`.
+    ///
+    /// The timings (`ns_per_call_*`, `reference_us`, `ns`) are wall-clock and vary from run
+    /// to run; every other value is deterministic.
     #[arg(long, verbatim_doc_comment)]
     json: bool,
 }
