@@ -1,5 +1,7 @@
 //! Deterministic quadrature for reference integrals (plain `f64`, not generic): composite
-//! Gauss-Legendre rules on intervals and a product rule over the sphere of directions.
+//! Gauss-Legendre rules on intervals, a product rule over the sphere of directions, adaptive
+//! integration with an error estimate, and the crate's one deterministic point sequence
+//! ([`kronecker`]) for test points and timing inputs.
 
 use crate::geometry::{local_direction, V3};
 use std::collections::BinaryHeap;
@@ -94,6 +96,27 @@ impl SphereRule {
     /// Integral over the sphere of `f(direction)` (solid angle measure).
     pub fn integrate(&self, mut f: impl FnMut(V3<f64>) -> f64) -> f64 {
         self.nodes.iter().map(|&(w, wt)| wt * f(w)).sum()
+    }
+}
+
+/// The `k`-th point of the Kronecker (additive recurrence) sequence in `dims` dimensions with
+/// Roberts' generalised golden ratios: coordinate d is `frac(1/2 + k / phi_dims^(d + 1))`,
+/// where phi_dims is the positive root of `x^(dims + 1) = x + 1` (phi_1 is the golden ratio;
+/// M. Roberts 2018, "The Unreasonable Effectiveness of Quasirandom Sequences"). Deterministic
+/// and evenly spread over the unit cube [0, 1)^dims (low discrepancy), and (almost surely) off
+/// every regular grid, so it serves for test points off a table's grid and for reproducible
+/// inputs of timing loops.
+///
+/// Writes the first `min(dims, out.len())` coordinates to `out` (the others are untouched).
+pub fn kronecker(k: usize, dims: usize, out: &mut [f64]) {
+    // phi_d by the fixed-point iteration x <- (1 + x)^(1 / (d + 1)), a contraction.
+    let mut g = 2.0f64;
+    for _ in 0..64 {
+        g = (1.0 + g).powf(1.0 / (dims as f64 + 1.0));
+    }
+    for (d, o) in out.iter_mut().enumerate().take(dims) {
+        let alpha = g.powi(-(d as i32 + 1));
+        *o = (0.5 + k as f64 * alpha).fract();
     }
 }
 
@@ -252,6 +275,24 @@ mod tests {
         assert!((r.integrate(|_| 1.0) - 4.0 * core::f64::consts::PI).abs() < 1e-12);
         let x2 = r.integrate(|w| w.x * w.x);
         assert!((x2 - 4.0 * core::f64::consts::PI / 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn kronecker_uses_the_generalised_golden_ratio_and_fills_the_cube() {
+        let mut u = [0.0; 2];
+        kronecker(1, 1, &mut u);
+        // One dimension: frac(1/2 + 1/phi), phi the golden ratio; the second slot is untouched.
+        let phi = 0.5 * (1.0 + 5f64.sqrt());
+        assert!((u[0] - (0.5 + 1.0 / phi).fract()).abs() < 1e-14, "{u:?}");
+        assert_eq!(u[1], 0.0);
+        // Two dimensions: every cell of a 4 x 4 grid gets a share of 1024 points.
+        let mut counts = [0usize; 16];
+        for k in 0..1024 {
+            kronecker(k, 2, &mut u);
+            assert!(u.iter().all(|x| (0.0..1.0).contains(x)));
+            counts[(4.0 * u[0]) as usize * 4 + (4.0 * u[1]) as usize] += 1;
+        }
+        assert!(counts.iter().all(|&c| (56..=72).contains(&c)), "{counts:?}");
     }
 
     #[test]

@@ -549,21 +549,6 @@ pub struct ErrorStats {
     pub worst_channel: usize,
 }
 
-/// The k-th point of the additive recurrence `frac(1/2 + k alpha)` with Roberts' generalised
-/// golden ratios in `dims` dimensions: evenly spread, deterministic, and (almost surely) off
-/// every grid.
-fn kronecker(k: usize, dims: usize, out: &mut [f64]) {
-    // phi_d: the positive root of x^(d+1) = x + 1.
-    let mut g = 2.0f64;
-    for _ in 0..64 {
-        g = (1.0 + g).powf(1.0 / (dims as f64 + 1.0));
-    }
-    for (d, o) in out.iter_mut().enumerate().take(dims) {
-        let alpha = g.powi(-(d as i32 + 1));
-        *o = (0.5 + k as f64 * alpha).fract();
-    }
-}
-
 /// Measures `table` (baked from `baker`) against direct evaluation at `points` off-grid points
 /// spread over the whole domain (a Kronecker sequence). Coordinates are rounded to f32 first,
 /// and the direct value is taken at the rounded coordinate, so the figures are interpolation
@@ -601,7 +586,7 @@ pub fn lookup_error(
     };
     let (mut n_abs, mut n_rel) = (0usize, 0usize);
     for k in 0..points {
-        kronecker(k, dims, &mut u);
+        crate::quadrature::kronecker(k, dims, &mut u);
         for (d, a) in table.axes().iter().enumerate() {
             c32[d] = (a.min() + u[d] * (a.max() - a.min())) as f32;
             c64[d] = f64::from(c32[d]);

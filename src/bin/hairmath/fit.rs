@@ -94,6 +94,13 @@ pub fn table(out: &mut impl Write, records: &[ConstantFit]) -> io::Result<()> {
 
 /// The records as a JSON array (keys documented in the README).
 fn json(records: &[ConstantFit]) -> String {
+    serde_json::to_string_pretty(&json_rows(records)).unwrap_or_else(|_| "[]".into())
+}
+
+/// The records as a JSON array value: one object per record with the keys key, source,
+/// approximates, published, refit, metric, published_error, refit_error (also the
+/// `fitted_constants` of `hairmath report --json`).
+pub fn json_rows(records: &[ConstantFit]) -> serde_json::Value {
     let rows: Vec<serde_json::Value> = records
         .iter()
         .map(|r| {
@@ -109,7 +116,7 @@ fn json(records: &[ConstantFit]) -> String {
             })
         })
         .collect();
-    serde_json::to_string_pretty(&rows).unwrap_or_else(|_| "[]".into())
+    serde_json::Value::Array(rows)
 }
 
 /// The error tables behind the summary rows.

@@ -2,7 +2,7 @@
 //!
 //! - `hairmath eval` evaluates a scattering model on directions read as CSV from stdin.
 //! - `hairmath report` prints lobe energies of a few hair colours, a white-furnace check and
-//!   an indicative evaluation speed.
+//!   an indicative evaluation speed, as markdown or (`--json`) JSON.
 //! - `hairmath lut` bakes a lookup table and writes it as raw f32 + JSON (and PNG).
 //! - `hairmath fit` regenerates the fitted constants of the source documents and prints them
 //!   beside the published values, with errors; it can write the generated constants file.
@@ -52,13 +52,15 @@ enum Command {
     /// On the first bad row the program reports the line number (the header is line 1) on
     /// stderr and exits with status 2; rows before it have already been written.
     Eval(eval::EvalArgs),
-    /// Print a markdown report: lobe energies of a few hair colours, a white-furnace check of
+    /// Print a report (markdown, or JSON with --json): lobe energies of a few hair colours, a white-furnace check of
     /// the model and an indicative evaluation speed, for the near and the far field, and the
     /// accuracy and cost of the far field's fixed-node integrator against its reference.
     ///
     /// Lobe energies are integrals of each lobe's S_p over all incident directions (solid
     /// angle), averaged over h uniform in [-1, 1], for a viewing direction perpendicular to
-    /// the fibre. Takes about a minute in a release build; --quick shrinks every quadrature.
+    /// the fibre. Every figure comes from `hairmath::diagnostics::report`. Takes about half a
+    /// minute in a release build; --quick shrinks every quadrature (a few seconds); --json
+    /// prints the same figures as one JSON object.
     Report(report::ReportArgs),
     /// Bake a lookup table (Nguyen-Donnelly M or N textures, Gerard's N_p LUT, or a far-field
     /// N_p table), write it as raw little-endian f32 with a JSON description (and 8-bit PNG
