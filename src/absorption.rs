@@ -111,6 +111,7 @@ pub enum PathLength {
 /// cos(gamma_t) and 1 / cos(theta_t) of the refracted ray: `2 cos(gamma_t) / cos(theta_t)`
 /// for the chord, `4 cos^2(gamma_t) / cos(theta_t)` for Marschner's exponent (see
 /// [`PathLength`]).
+#[inline(always)]
 pub fn segment_length<R: Real>(cos_gamma_t: R, inv_cos_theta_t: R, path: PathLength) -> R {
     match path {
         PathLength::Chord => R::c(2.0) * cos_gamma_t * inv_cos_theta_t,

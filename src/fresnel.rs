@@ -30,12 +30,14 @@ pub fn fresnel_dielectric<R: Real>(cos_i: R, eta: R) -> R {
 /// internal reflection (`cos_t >= sqrt(1 - 1/eta^2)`), and the two amplitude ratios share one
 /// division, `(r_par^2 + r_perp^2) / 2 = (a^2 d^2 + c^2 b^2) / (2 b^2 d^2)` with
 /// `r_par = a / b`, `r_perp = c / d`.
+#[inline(always)]
 pub fn fresnel_from_outside<R: Real>(cos_i: R, eta: R, inv_eta: R) -> R {
     reflectance(cos_i, eta, inv_eta).0
 }
 
 /// `(R, sin^2 theta_t)` for `cos_i` in [0, 1] on the side of relative index `eta` (reciprocal
 /// `inv_eta`); `R` is meaningful only where `sin^2 theta_t < 1` (no total internal reflection).
+#[inline(always)]
 fn reflectance<R: Real>(cos_i: R, eta: R, inv_eta: R) -> (R, R) {
     let one = R::c(1.0);
     let sin2_t = (one - cos_i * cos_i) * (inv_eta * inv_eta);

@@ -114,6 +114,7 @@ pub fn sin_cos_theta<R: Real>(tangent: V3<R>, w: V3<R>) -> (R, R) {
 }
 
 /// [`sin_cos_theta`] in the local frame (tangent +X): `(w.x, sqrt(w.y^2 + w.z^2))`, clamped.
+#[inline(always)]
 pub fn local_sin_cos_theta<R: Real>(w: V3<R>) -> (R, R) {
     (
         w.x.clamp(R::c(-1.0), R::c(1.0)),
@@ -123,6 +124,7 @@ pub fn local_sin_cos_theta<R: Real>(w: V3<R>) -> (R, R) {
 
 /// The signed angle from `a` to `b` about the axis `tangent`: atan2(u . (a x b), a . b),
 /// with 0 when the two are not both defined (never atan2(0, 0)).
+#[inline(always)]
 pub fn azimuth_between<R: Real>(tangent: V3<R>, a: V3<R>, b: V3<R>) -> R {
     let sine = tangent.dot(a.cross(b));
     let cosine = a.dot(b);
@@ -147,6 +149,7 @@ pub fn fibre_angles<R: Real>(tangent: V3<R>, wi: V3<R>, wo: V3<R>) -> FibreAngle
 }
 
 /// Angles of unit directions given in the local frame (tangent +X).
+#[inline(always)]
 pub fn local_fibre_angles<R: Real>(wi: V3<R>, wo: V3<R>) -> FibreAngles<R> {
     let x = V3::c(1.0, 0.0, 0.0);
     let pi_ = V3::new(R::c(0.0), wi.y, wi.z);

@@ -247,11 +247,26 @@ fn energy_identity_phi_integral_equals_half_h_integral() {
     println!("energy identity away from the cusp: worst relative difference {worst:e}");
 }
 
+/// Caustic parameters by position (the library takes them by name).
+fn caustic(
+    glint_scale: f64,
+    caustic_width: f64,
+    fade_range: f64,
+    caustic_limit: f64,
+) -> Result<CausticParams, ParamError> {
+    CausticParams::new(&hairmath::azimuthal::CausticSettings {
+        glint_scale,
+        caustic_width,
+        fade_range,
+        caustic_limit,
+    })
+}
+
 #[test]
 fn finite_and_non_negative_at_caustics() {
     let params = [
         CausticParams::default(),
-        CausticParams::new(5.0, 10f64.to_radians(), 0.2, 0.5).unwrap(),
+        caustic(5.0, 10f64.to_radians(), 0.2, 0.5).unwrap(),
     ];
     let sigma_a = [0.0, 0.3, 3.0];
     let mut largest: f64 = 0.0;
@@ -329,14 +344,14 @@ fn caustic_treatment_is_continuous_across_eta_prime_two() {
 fn invalid_caustic_parameters_are_typed_errors() {
     let d = 15f64.to_radians();
     let cases = [
-        (CausticParams::new(-0.1, d, 0.3, 0.5), "glint_scale"),
-        (CausticParams::new(f64::NAN, d, 0.3, 0.5), "glint_scale"),
-        (CausticParams::new(1.0, 0.0, 0.3, 0.5), "caustic_width"),
-        (CausticParams::new(1.0, 4.0, 0.3, 0.5), "caustic_width"),
-        (CausticParams::new(1.0, d, 0.0, 0.5), "fade_range"),
-        (CausticParams::new(1.0, d, f64::INFINITY, 0.5), "fade_range"),
-        (CausticParams::new(1.0, d, 0.3, 0.0), "caustic_limit"),
-        (CausticParams::new(1.0, d, 0.3, 2.5), "caustic_limit"),
+        (caustic(-0.1, d, 0.3, 0.5), "glint_scale"),
+        (caustic(f64::NAN, d, 0.3, 0.5), "glint_scale"),
+        (caustic(1.0, 0.0, 0.3, 0.5), "caustic_width"),
+        (caustic(1.0, 4.0, 0.3, 0.5), "caustic_width"),
+        (caustic(1.0, d, 0.0, 0.5), "fade_range"),
+        (caustic(1.0, d, f64::INFINITY, 0.5), "fade_range"),
+        (caustic(1.0, d, 0.3, 0.0), "caustic_limit"),
+        (caustic(1.0, d, 0.3, 2.5), "caustic_limit"),
     ];
     for (result, expected) in cases {
         match result {
@@ -344,7 +359,7 @@ fn invalid_caustic_parameters_are_typed_errors() {
             other => panic!("expected an error for {expected}, got {other:?}"),
         }
     }
-    let ok = CausticParams::new(5.0, 25f64.to_radians(), 0.4, 0.5).unwrap();
+    let ok = caustic(5.0, 25f64.to_radians(), 0.4, 0.5).unwrap();
     assert_eq!(ok.glint_scale(), 5.0);
     let def = CausticParams::default();
     assert_eq!(

@@ -13,6 +13,7 @@ pub const LOBES: usize = 4;
 /// The residual is written as `(1 - f)^2 f^2 t^3 / max(1 - f t, tiny)`: at h = +-1 with no
 /// absorption `f = t = 1` and the true limit is 0, which the numerator gives exactly. For
 /// `t = 1` the four terms sum to 1.
+#[inline(always)]
 pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES] {
     let one = R::c(1.0);
     let a0 = f;

@@ -2,6 +2,7 @@ use crate::real::{pi, Real};
 
 /// `(e, (1 + e)^2)` with `e = e^(-|x| / s)`, from `inv_scale = 1 / s`: the logistic density
 /// is `e / (s (1 + e)^2)`. Written with `|x|` so the exponential never overflows.
+#[inline(always)]
 fn logistic_parts<R: Real>(x: R, inv_scale: R) -> (R, R) {
     let e = (-x.abs() * inv_scale).exp();
     (e, (R::c(1.0) + e).sqr())
@@ -41,6 +42,7 @@ pub struct TrimmedLogistic<R> {
 
 impl<R: Real> TrimmedLogistic<R> {
     /// The trimmed logistic of scale `s > 0`.
+    #[inline(always)]
     pub fn new(s: R) -> Self {
         let inv_scale = R::c(1.0) / s;
         let mass = trimmed_mass(s);
@@ -53,12 +55,14 @@ impl<R: Real> TrimmedLogistic<R> {
     }
 
     /// The density at `x` in [-pi, pi].
+    #[inline(always)]
     pub fn density(&self, x: R) -> R {
         self.densities([x])[0]
     }
 
     /// The density at `N` points in [-pi, pi], with one division for all of them:
     /// `D(x_p) = e_p norm prod_{q != p} d_q / prod_q d_q`, `d_q = (1 + e_q)^2` in [1, 4].
+    #[inline(always)]
     pub fn densities<const N: usize>(&self, x: [R; N]) -> [R; N] {
         let parts = x.map(|x| logistic_parts(x, self.inv_scale));
         let mut product = R::c(1.0);

@@ -443,40 +443,44 @@ impl Default for CausticParams {
     }
 }
 
+/// The parameters of Marschner's caustic treatment by name, before validation
+/// ([`CausticParams::new`]); angles in radians.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CausticSettings {
+    /// k_G >= 0 (Table 1 suggests 0.5 to 5).
+    pub glint_scale: f64,
+    /// w_c in (0, pi] radians: the standard deviation of the Gaussian that replaces the
+    /// caustic (Table 1: 10 to 25 degrees).
+    pub caustic_width: f64,
+    /// Delta eta* > 0: the range of eta' above 2 over which the merged caustic fades out
+    /// (Table 1: 0.2 to 0.4).
+    pub fade_range: f64,
+    /// Delta h_M in (0, 2]: the largest width in h the glint may take (Table 1: 0.5).
+    pub caustic_limit: f64,
+}
+
 impl CausticParams {
-    /// Validated parameters.
-    ///
-    /// - `glint_scale` k_G >= 0 (Table 1 suggests 0.5 to 5);
-    /// - `caustic_width` w_c in (0, pi] radians: the standard deviation of the Gaussian that
-    ///   replaces the caustic (Table 1: 10 to 25 degrees);
-    /// - `fade_range` Delta eta* > 0: the range of eta' above 2 over which the merged caustic
-    ///   fades out (Table 1: 0.2 to 0.4);
-    /// - `caustic_limit` Delta h_M in (0, 2]: the largest width in h the glint may take
-    ///   (Table 1: 0.5).
+    /// Validated parameters (domains in [`CausticSettings`]).
     ///
     /// # Errors
     /// [`ParamError::OutOfRange`] naming the first parameter outside its domain (NaN and
     /// infinities included).
-    pub fn new(
-        glint_scale: f64,
-        caustic_width: f64,
-        fade_range: f64,
-        caustic_limit: f64,
-    ) -> Result<Self, ParamError> {
+    pub fn new(settings: &CausticSettings) -> Result<Self, ParamError> {
+        let s = settings;
         Ok(CausticParams {
-            glint_scale: ParamError::check("glint_scale", glint_scale, "must be >= 0", |v| {
+            glint_scale: ParamError::check("glint_scale", s.glint_scale, "must be >= 0", |v| {
                 v >= 0.0
             })?,
             caustic_width: ParamError::check(
                 "caustic_width",
-                caustic_width,
+                s.caustic_width,
                 "must be in (0, pi] radians",
                 |v| v > 0.0 && v <= PI,
             )?,
-            fade_range: ParamError::check("fade_range", fade_range, "must be > 0", |v| v > 0.0)?,
+            fade_range: ParamError::check("fade_range", s.fade_range, "must be > 0", |v| v > 0.0)?,
             caustic_limit: ParamError::check(
                 "caustic_limit",
-                caustic_limit,
+                s.caustic_limit,
                 "must be in (0, 2]",
                 |v| v > 0.0 && v <= 2.0,
             )?,

@@ -17,7 +17,7 @@ pub use exit_angle::{exit_angle, exit_angle_of_offset, refracted_offset};
 pub use marschner::{
     marschner_attenuation, marschner_critical_angle, marschner_exit_angle,
     marschner_exit_angle_derivative, marschner_fresnel, marschner_np, marschner_roots, trt_caustic,
-    CausticParams, MarschnerPath, RootList, TrtCaustic, MARSCHNER_MAX_P, MIN_DPHI_DH,
-    ROOT_CAPACITY,
+    CausticParams, CausticSettings, MarschnerPath, RootList, TrtCaustic, MARSCHNER_MAX_P,
+    MIN_DPHI_DH, ROOT_CAPACITY,
 };
 pub use path::{FibrePath, Refraction};

@@ -47,6 +47,7 @@ pub struct FibrePath<R> {
 impl<R: Real> Refraction<R> {
     /// Refraction of the ray with inclination sine `sin_theta` and cosine `cos_theta >= 0` into
     /// a fibre of index `eta > 1`, given `inv_eta = 1 / eta` (models precompute it).
+    #[inline(always)]
     pub fn new(sin_theta: R, cos_theta: R, eta: R, inv_eta: R) -> Self {
         let sin_t = sin_theta * inv_eta;
         let cos_theta_t = safe_sqrt(R::c(1.0) - sin_t * sin_t);
@@ -60,6 +61,7 @@ impl<R: Real> Refraction<R> {
     }
 
     /// sin(gamma_t) of the ray entering at offset h: `h cos theta / (eta cos theta_t)`.
+    #[inline(always)]
     pub fn sin_gamma_t(&self, h: R) -> R {
         h * self.cos_theta * self.inv_eta * self.inv_cos_theta_t
     }
@@ -68,6 +70,7 @@ impl<R: Real> Refraction<R> {
     /// of the length model `length`. The asines are written with the cosines the path needs
     /// anyway, `gamma = atan2(sin, cos)` ([`crate::real::safe_asin`] computes them the same
     /// way).
+    #[inline(always)]
     pub fn path(&self, h: R, length: PathLength) -> FibrePath<R> {
         let one = R::c(1.0);
         let h = h.clamp(-one, one);
@@ -86,12 +89,14 @@ impl<R: Real> Refraction<R> {
 impl<R: Real> FibrePath<R> {
     /// The transmittance `exp(-sigma_a L)` of one internal segment for absorption `sigma_a`
     /// per unit radius.
+    #[inline(always)]
     pub fn transmittance(&self, sigma_a: R) -> R {
         (-sigma_a * self.segment_length).exp()
     }
 
     /// The attenuations `[A_0, A_1, A_2, A_3+]` of the path for absorption `sigma_a` per unit
     /// radius ([`attenuations_from_fresnel`] of the entry reflectance and the transmittance).
+    #[inline(always)]
     pub fn attenuations(&self, sigma_a: R) -> [R; LOBES] {
         attenuations_from_fresnel(self.fresnel, self.transmittance(sigma_a))
     }
@@ -100,6 +105,7 @@ impl<R: Real> FibrePath<R> {
 /// cos(gamma_o) and the Fresnel reflectance at the entry point of the ray inclined at theta
 /// (cosine `cos_theta`) entering at offset `h` in [-1, 1]: the true angle of incidence has
 /// cosine `cos(theta) cos(gamma_o)`, `cos gamma_o = sqrt(1 - h^2)`.
+#[inline(always)]
 pub(super) fn entry<R: Real>(cos_theta: R, h: R, eta: R, inv_eta: R) -> (R, R) {
     let cos_gamma_o = safe_sqrt(R::c(1.0) - h * h);
     (

@@ -175,8 +175,15 @@ pub trait Offsets<R: Real>: Clone {
     /// Whether S depends on the query's offset h (the near field).
     const NEAR_FIELD: bool;
 
-    /// The azimuthal factors of `hair` for `at`, at the offset `h` or averaged over offsets.
-    fn azimuthal<O>(&self, hair: &ChiangHair<R, O>, at: Outgoing<R>, h: R) -> AzimuthalFactors<R>;
+    /// The azimuthal factors of `hair` for `at`, at the offset `h` or averaged over offsets;
+    /// the pdf's factors `w_p N_p` only `WITH_PDF` (zero otherwise: evaluation skips the
+    /// lobe-choice divisions).
+    fn azimuthal<O, const WITH_PDF: bool>(
+        &self,
+        hair: &ChiangHair<R, O>,
+        at: Outgoing<R>,
+        h: R,
+    ) -> AzimuthalFactors<R>;
 
     /// The offset importance sampling draws at: `h` itself, or a node chosen by `u` in [0, 1).
     fn sample_offset(&self, h: R, u: R) -> R;
@@ -204,8 +211,13 @@ impl OffsetsIn for AtOffset {
 impl<R: Real> Offsets<R> for AtOffset {
     const NEAR_FIELD: bool = true;
 
-    fn azimuthal<O>(&self, hair: &ChiangHair<R, O>, at: Outgoing<R>, h: R) -> AzimuthalFactors<R> {
-        hair.azimuthal_at(at, h)
+    fn azimuthal<O, const WITH_PDF: bool>(
+        &self,
+        hair: &ChiangHair<R, O>,
+        at: Outgoing<R>,
+        h: R,
+    ) -> AzimuthalFactors<R> {
+        hair.azimuthal_at::<WITH_PDF>(at, h)
     }
 
     fn sample_offset(&self, h: R, _u: R) -> R {
@@ -265,6 +277,7 @@ pub(crate) struct PairAngles<R> {
 
 impl<R: Real> PairAngles<R> {
     /// The angles of a query's directions ([`local_fibre_angles`]; its phi_o - phi_i negated).
+    #[inline(always)]
     pub fn of(query: &Query<R>) -> Self {
         let a = local_fibre_angles(query.wi, query.wo);
         PairAngles {
@@ -318,6 +331,7 @@ impl<R: Real, O> ChiangHair<R, O> {
     }
 
     /// d'Eon's lobe and its variance for lobe p (the residual shares TRT's).
+    #[inline(always)]
     fn lobe(&self, p: usize) -> (DeonLobe<R>, R) {
         let u = &self.uniforms;
         let (inv_v, norm, v) = match p {
@@ -329,6 +343,7 @@ impl<R: Real, O> ChiangHair<R, O> {
     }
 
     /// The azimuthal distribution.
+    #[inline(always)]
     pub(crate) fn logistic(&self) -> TrimmedLogistic<R> {
         let u = &self.uniforms;
         TrimmedLogistic {
@@ -341,6 +356,7 @@ impl<R: Real, O> ChiangHair<R, O> {
 
     /// theta_o rotated by the tilt of lobe p: -2 alpha (R), +alpha (TT), +4 alpha (TRT), none
     /// for the residual. Returns (sin, |cos|).
+    #[inline(always)]
     fn tilted(&self, p: usize, sin_o: R, cos_o: R) -> (R, R) {
         let u = &self.uniforms;
         let (s, c) = match p {
@@ -354,6 +370,7 @@ impl<R: Real, O> ChiangHair<R, O> {
 
     /// The path through the fibre for wo's inclination and offset `h` (clamped to [-1, 1]),
     /// and `A_p` per lobe and channel.
+    #[inline(always)]
     fn attenuations_at(&self, sin_o: R, cos_o: R, h: R) -> (FibrePath<R>, [[R; 3]; LOBES]) {
         let u = &self.uniforms;
         let path = Refraction::new(sin_o, cos_o, u.eta, u.inv_eta).path(h, PathLength::Chord);
@@ -363,6 +380,7 @@ impl<R: Real, O> ChiangHair<R, O> {
     }
 
     /// M_p for p = 0..3 with the tilt of each lobe.
+    #[inline(always)]
     pub(crate) fn longitudinal(&self, angles: &PairAngles<R>) -> [R; LOBES] {
         core::array::from_fn(|p| {
             let (sin_op, cos_op) = self.tilted(p, angles.out.sin_o, angles.out.cos_o);
@@ -376,24 +394,32 @@ impl<R: Real, O> ChiangHair<R, O> {
     /// `phi = phi_i - phi_o`: `(A_p N_p per channel, w_p N_p)`.
     /// `N_p` is the trimmed logistic about the exit angle Phi(p) for p < 3 (the three share one
     /// division, [`TrimmedLogistic::densities`]) and `1 / (2 pi)` for the residual; `w_p` are
-    /// the lobe-choice probabilities of sampling (evaluation discards them, and the compiler
-    /// and the tracer drop their arithmetic).
-    pub(crate) fn azimuthal_at(&self, at: Outgoing<R>, h: R) -> AzimuthalFactors<R> {
+    /// the lobe-choice probabilities of sampling, computed only `WITH_PDF` (a type-level
+    /// constant, so the traced code has no data-dependent branch; evaluation needs no pdf).
+    #[inline(always)]
+    pub(crate) fn azimuthal_at<const WITH_PDF: bool>(
+        &self,
+        at: Outgoing<R>,
+        h: R,
+    ) -> AzimuthalFactors<R> {
         let (path, a) = self.attenuations_at(at.sin_o, at.cos_o, h);
         let dphi: [R; 3] = core::array::from_fn(|p| {
             wrap_angle(at.phi - exit_angle(R::c(p as f64), path.gamma_o, path.gamma_t))
         });
         let [n0, n1, n2] = self.logistic().densities(dphi);
         let n = [n0, n1, n2, R::c(0.5 * core::f64::consts::FRAC_1_PI)];
-        let w = lobe_weights(&a);
-        (
-            core::array::from_fn(|p| a[p].map(|x| x * n[p])),
-            core::array::from_fn(|p| w[p] * n[p]),
-        )
+        let wn = if WITH_PDF {
+            let w = lobe_weights(&a);
+            core::array::from_fn(|p| w[p] * n[p])
+        } else {
+            [R::c(0.0); LOBES]
+        };
+        (core::array::from_fn(|p| a[p].map(|x| x * n[p])), wn)
     }
 
     /// The lobe factors for a query and an azimuthal part computed by `azimuthal` from
     /// [`Outgoing`].
+    #[inline(always)]
     pub(crate) fn terms_with(
         &self,
         query: &Query<R>,
@@ -474,9 +500,13 @@ fn lobe_weights<R: Real>(a: &[[R; 3]; LOBES]) -> [R; LOBES] {
 }
 
 impl<R: Real, O: Offsets<R>> ChiangHair<R, O> {
-    /// The lobe factors of a query, the azimuthal ones by the offset rule.
-    fn terms(&self, query: &Query<R>) -> LobeTerms<R> {
-        self.terms_with(query, |at| self.offsets.azimuthal(self, at, query.h))
+    /// The lobe factors of a query, the azimuthal ones by the offset rule (those of the pdf
+    /// only `WITH_PDF`).
+    #[inline(always)]
+    fn terms<const WITH_PDF: bool>(&self, query: &Query<R>) -> LobeTerms<R> {
+        self.terms_with(query, |at| {
+            self.offsets.azimuthal::<O, WITH_PDF>(self, at, query.h)
+        })
     }
 }
 
@@ -493,12 +523,12 @@ impl<R: Real, O: Offsets<R>> Bcsdf<R> for ChiangHair<R, O> {
     /// [-1, 1] (clamped; ignored by the far field). No cosine factor (see the module
     /// documentation). Finite and non-negative for every finite input.
     fn eval(&self, query: &Query<R>) -> [R; 3] {
-        self.terms(query).value()
+        self.terms::<false>(query).value()
     }
 
     /// `M_p A_p N_p` of each lobe (R, TT, TRT, residual) per channel.
     fn eval_lobes(&self, query: &Query<R>) -> Vec<[R; 3]> {
-        self.terms(query).per_lobe()
+        self.terms::<false>(query).per_lobe()
     }
 }
 
@@ -506,7 +536,7 @@ impl<R: Real, O: Offsets<R>> SampledBcsdf<R> for ChiangHair<R, O> {
     /// The density of [`SampledBcsdf::sample`]: `sum_p M_p w_p N_p` with the lobe-choice
     /// probabilities w_p of pbrt-v4's `ApPDF` (averaged over the offsets for the far field).
     fn pdf(&self, query: &Query<R>) -> R {
-        self.terms(query).pdf()
+        self.terms::<true>(query).pdf()
     }
 
     /// Importance-samples wi given wo and h (d'Eon 2013; pbrt-v4 `Sample_f`): the far field
@@ -515,7 +545,7 @@ impl<R: Real, O: Offsets<R>> SampledBcsdf<R> for ChiangHair<R, O> {
     /// azimuth of the longitudinal cone. Branch-free, so it traces.
     fn sample(&self, wo: V3<R>, h: R, u: RandomNumbers<R>) -> HairSample<R> {
         let wi = self.sample_direction(wo, self.offsets.sample_offset(h, u.offset), &u);
-        let terms = self.terms(&Query::new(wi, wo, h));
+        let terms = self.terms::<true>(&Query::new(wi, wo, h));
         HairSample {
             wi,
             value: terms.value(),

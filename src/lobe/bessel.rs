@@ -46,6 +46,7 @@ const ASYMPTOTIC: [f64; ASYMPTOTIC_TERMS] = {
 /// they compute anyway, so the lobes need no logarithm: below the switch point the series gives
 /// `scale = I0(x)`, `shift = -x`; above it the asymptotic form gives `scale = sqrt(x) e^-x I0(x)
 /// / sqrt(x)`, `shift = 0`. Neither part overflows for any finite x.
+#[inline(always)]
 pub fn i0e_split<R: Real>(x: R) -> (R, R) {
     let x = x.max(R::c(0.0));
     let (switch, near, far) = if R::DOUBLE {
@@ -62,6 +63,7 @@ pub fn i0e_split<R: Real>(x: R) -> (R, R) {
 
 /// (switch point, I0 by its power series, sqrt(2 pi x) e^-x I0 / sqrt(2 pi x) by the asymptotic
 /// series), each evaluated on its side of the switch point.
+#[inline(always)]
 fn series_double<R: Real>(x: R) -> (f64, R, R) {
     let small = x.min(R::c(SERIES_END));
     let large = x.max(R::c(SERIES_END));
@@ -72,6 +74,7 @@ fn series_double<R: Real>(x: R) -> (f64, R, R) {
 }
 
 /// The same parts from the polynomial fits of Abramowitz and Stegun 9.8.1 and 9.8.2.
+#[inline(always)]
 fn polynomials_single<R: Real>(x: R) -> (f64, R, R) {
     let small = x.min(R::c(3.75));
     let large = x.max(R::c(3.75));

@@ -41,6 +41,7 @@ impl<R: Real> DeonLobe<R> {
     }
 
     /// `M(theta_i; theta_o)` from the sines and (non-negative) cosines of both angles.
+    #[inline(always)]
     pub fn eval(&self, sin_i: R, cos_i: R, sin_o: R, cos_o: R) -> R {
         let one = R::c(1.0);
         let cos_sum = cos_i * cos_o - sin_i * sin_o;

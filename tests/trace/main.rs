@@ -1187,5 +1187,7 @@ fn the_scan_finds_known_functions() {
     ] {
         assert!(public.contains(name), "{name} not found in {public:?}");
     }
-    assert!(!public.contains("HenyeyGreenstein::new") && !public.contains("sigma_a_from_color"));
+    assert!(
+        !public.contains("HenyeyGreenstein::new") && !public.contains("Absorption::from_color")
+    );
 }

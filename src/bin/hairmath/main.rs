@@ -36,10 +36,13 @@ struct Cli {
 enum Command {
     /// Evaluate a scattering model S(wi, wo, h) on directions read as CSV from stdin.
     ///
+    /// The model is any of the library's registered models (--model); each takes its own
+    /// flags, and a flag means the same (unit, domain, message) for every model that takes it.
+    ///
     /// Reads CSV on stdin. The first line is a header that must name the columns
-    /// wi_x, wi_y, wi_z, wo_x, wo_y, wo_z and h, in any order (h is not needed by
-    /// --model chiang-far, which ignores it); other columns are passed through
-    /// unchanged, in place. Directions are in the fibre's local frame (tangent +X), point away
+    /// wi_x, wi_y, wi_z, wo_x, wo_y, wo_z and, for near-field models (chiang), h, in any
+    /// order (far-field models ignore h); other columns are passed through unchanged, in
+    /// place. Directions are in the fibre's local frame (tangent +X), point away
     /// from the fibre, and must be unit vectors within 1e-3 (they are normalised before
     /// evaluation); h must be in [-1, 1].
     ///
