@@ -146,7 +146,7 @@ impl ChiangUniforms<f64> {
 /// The Chiang 2016 model in the working precision `R`, reading its [`ChiangUniforms`], with the
 /// azimuthal factors taken across the fibre's width by the rule `O`: at the query's offset h
 /// ([`AtOffset`], the near field, the default) or averaged over fixed offsets
-/// ([`OffsetNodes`], the far field [`crate::bcsdf::ChiangFarField`]). Evaluation, lobes, pdf
+/// ([`crate::bcsdf::OffsetNodes`], the far field [`crate::bcsdf::ChiangFarField`]). Evaluation, lobes, pdf
 /// and sampling are written once for both.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ChiangHair<R, O = AtOffset> {

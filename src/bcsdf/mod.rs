@@ -21,7 +21,10 @@ mod model;
 mod registry;
 
 pub use batch::{eval_batch, pdf_batch, BatchLanes, BatchLengthError, BatchReal, LANES};
-pub use chiang::{logistic_scale, longitudinal_variance, ChiangHair, ChiangUniforms, CHIANG_LOBES};
+pub use chiang::{
+    logistic_scale, longitudinal_variance, AtOffset, AzimuthalFactors, ChiangHair, ChiangUniforms,
+    Offsets, OffsetsIn, Outgoing, CHIANG_LOBES,
+};
 pub use far_field::{
     ChiangFarField, FarField, FarFieldReference, FarFieldRule, OffsetNodes, ReferenceFarField,
     DEFAULT_FAR_FIELD_NODES, FAR_FIELD_ERROR_BOUNDS, MAX_FAR_FIELD_NODES, REFERENCE_REL_TOL,

@@ -115,7 +115,7 @@ impl Directions {
 pub const PATHS: [PathLength; 2] = [PathLength::Marschner2003, PathLength::Chord];
 
 /// `marschner` or `chord`, as in the record keys.
-pub fn path_key(path: PathLength) -> &'static str {
+pub(crate) fn path_key(path: PathLength) -> &'static str {
     match path {
         PathLength::Marschner2003 => "marschner",
         PathLength::Chord => "chord",
