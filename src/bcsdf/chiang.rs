@@ -154,8 +154,9 @@ pub struct ChiangHair<R, O = AtOffset> {
     offsets: O,
 }
 
-/// What the azimuthal factors of a Chiang model depend on: wo's inclination (sine and cosine)
-/// and the relative azimuth `phi = phi_i - phi_o` of the lobes.
+/// What the azimuthal factors of a Chiang model depend on: wo's inclination (sine and cosine),
+/// the relative azimuth `phi = phi_i - phi_o` of the lobes and the offset h where wo's ray
+/// meets the fibre (which the far field replaces by its nodes).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Outgoing<R> {
     /// sin theta_o.
@@ -164,6 +165,8 @@ pub struct Outgoing<R> {
     pub cos_o: R,
     /// phi_i - phi_o.
     pub phi: R,
+    /// The offset h in [-1, 1].
+    pub h: R,
 }
 
 /// `(A_p N_p per channel, w_p N_p)` for the lobes R, TT, TRT and the residual: the azimuthal
@@ -175,14 +178,13 @@ pub trait Offsets<R: Real>: Clone {
     /// Whether S depends on the query's offset h (the near field).
     const NEAR_FIELD: bool;
 
-    /// The azimuthal factors of `hair` for `at`, at the offset `h` or averaged over offsets;
-    /// the pdf's factors `w_p N_p` only `WITH_PDF` (zero otherwise: evaluation skips the
+    /// The azimuthal factors of `hair` for `at`, at its offset or averaged over offsets; the
+    /// pdf's factors `w_p N_p` only `WITH_PDF` (zero otherwise: evaluation skips the
     /// lobe-choice divisions).
     fn azimuthal<O, const WITH_PDF: bool>(
         &self,
         hair: &ChiangHair<R, O>,
         at: Outgoing<R>,
-        h: R,
     ) -> AzimuthalFactors<R>;
 
     /// The offset importance sampling draws at: `h` itself, or a node chosen by `u` in [0, 1).
@@ -211,17 +213,16 @@ impl OffsetsIn for AtOffset {
 impl<R: Real> Offsets<R> for AtOffset {
     const NEAR_FIELD: bool = true;
 
+    fn sample_offset(&self, h: R, _u: R) -> R {
+        h
+    }
+
     fn azimuthal<O, const WITH_PDF: bool>(
         &self,
         hair: &ChiangHair<R, O>,
         at: Outgoing<R>,
-        h: R,
     ) -> AzimuthalFactors<R> {
-        hair.azimuthal_at::<WITH_PDF>(at, h)
-    }
-
-    fn sample_offset(&self, h: R, _u: R) -> R {
-        h
+        hair.azimuthal_at::<WITH_PDF>(at)
     }
 }
 
@@ -287,6 +288,7 @@ impl<R: Real> PairAngles<R> {
                 sin_o: a.sin_theta_o,
                 cos_o: a.cos_theta_o,
                 phi: -a.phi,
+                h: query.h,
             },
         }
     }
@@ -390,7 +392,7 @@ impl<R: Real, O> ChiangHair<R, O> {
         })
     }
 
-    /// The azimuthal factors at offset `h` (clamped to [-1, 1]) for relative azimuth
+    /// The azimuthal factors at `at`'s offset (clamped to [-1, 1]) and relative azimuth
     /// `phi = phi_i - phi_o`: `(A_p N_p per channel, w_p N_p)`.
     /// `N_p` is the trimmed logistic about the exit angle Phi(p) for p < 3 (the three share one
     /// division, [`TrimmedLogistic::densities`]) and `1 / (2 pi)` for the residual; `w_p` are
@@ -400,9 +402,8 @@ impl<R: Real, O> ChiangHair<R, O> {
     pub(crate) fn azimuthal_at<const WITH_PDF: bool>(
         &self,
         at: Outgoing<R>,
-        h: R,
     ) -> AzimuthalFactors<R> {
-        let (path, a) = self.attenuations_at(at.sin_o, at.cos_o, h);
+        let (path, a) = self.attenuations_at(at.sin_o, at.cos_o, at.h);
         let dphi: [R; 3] = core::array::from_fn(|p| {
             wrap_angle(at.phi - exit_angle(R::c(p as f64), path.gamma_o, path.gamma_t))
         });
@@ -504,9 +505,7 @@ impl<R: Real, O: Offsets<R>> ChiangHair<R, O> {
     /// only `WITH_PDF`).
     #[inline(always)]
     fn terms<const WITH_PDF: bool>(&self, query: &Query<R>) -> LobeTerms<R> {
-        self.terms_with(query, |at| {
-            self.offsets.azimuthal::<O, WITH_PDF>(self, at, query.h)
-        })
+        self.terms_with(query, |at| self.offsets.azimuthal::<O, WITH_PDF>(self, at))
     }
 }
 

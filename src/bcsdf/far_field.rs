@@ -125,17 +125,16 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
     const NEAR_FIELD: bool = false;
 
     /// `(N_p A_p per channel, w_p N_p)` averaged over the nodes: `N_p` here includes the
-    /// attenuation, `1/2 int A_p(h) D(phi - Phi(p, h)) dh`; `h` is ignored.
+    /// attenuation, `1/2 int A_p(h) D(phi - Phi(p, h)) dh`; `at.h` is ignored.
     fn azimuthal<O, const WITH_PDF: bool>(
         &self,
         hair: &ChiangHair<R, O>,
         at: Outgoing<R>,
-        _h: R,
     ) -> AzimuthalFactors<R> {
         let mut an = [[R::c(0.0); 3]; LOBES];
         let mut wn = [R::c(0.0); LOBES];
         for &(h, weight) in &self.nodes {
-            let (a, w) = hair.azimuthal_at::<WITH_PDF>(at, h);
+            let (a, w) = hair.azimuthal_at::<WITH_PDF>(Outgoing { h, ..at });
             for p in 0..LOBES {
                 for c in 0..3 {
                     an[p][c] += weight * a[p][c];
@@ -181,8 +180,13 @@ impl<R: Real> ChiangHair<R, OffsetNodes<R>> {
     /// `phi = phi_i - phi_o` and the inclination of wo. `N_p` here includes the attenuation:
     /// `1/2 int A_p(h) D(phi - Phi(p, h)) dh`.
     pub fn azimuthal(&self, sin_o: R, cos_o: R, phi: R) -> AzimuthalFactors<R> {
-        let at = Outgoing { sin_o, cos_o, phi };
-        self.offsets().azimuthal::<_, true>(self, at, R::c(0.0))
+        let at = Outgoing {
+            sin_o,
+            cos_o,
+            phi,
+            h: R::c(0.0),
+        };
+        self.offsets().azimuthal::<_, true>(self, at)
     }
 }
 
@@ -379,8 +383,13 @@ impl ChiangHair<f64> {
         let half_pi = core::f64::consts::FRAC_PI_2;
         let (flat, error) = adaptive(
             |gamma| {
-                let at = Outgoing { sin_o, cos_o, phi };
-                let (an, _) = self.azimuthal_at::<false>(at, gamma.sin());
+                let h = gamma.sin();
+                let (an, _) = self.azimuthal_at::<false>(Outgoing {
+                    sin_o,
+                    cos_o,
+                    phi,
+                    h,
+                });
                 let weight = 0.5 * gamma.cos();
                 let mut out = [0.0; 3 * LOBES];
                 for p in 0..LOBES {
