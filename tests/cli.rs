@@ -561,83 +561,29 @@ fn an_invalid_value_gives_the_same_message_in_every_subcommand() {
     let eta = "eta = 5 is not allowed: the relative index of refraction must be in (1, 3]";
     let sigma_a =
         "sigma_a = -1 is not allowed: absorption must be finite and >= 0 in every channel";
-    let cases: [(&[&str], &str); 8] = [
+    let lut = |kind: &str, rest: &str| format!("lut --kind {kind} {rest} --out {out}");
+    let cases = [
         (
-            &[
-                "eval",
-                "--beta-m",
-                "0.3",
-                "--beta-n",
-                "1.5",
-                "--sigma-a",
-                "1",
-            ],
+            "eval --beta-m 0.3 --beta-n 1.5 --sigma-a 1".to_string(),
             beta_n,
         ),
         (
-            &[
-                "eval",
-                "--model",
-                "chiang-far",
-                "--beta-m",
-                "0.3",
-                "--beta-n",
-                "1.5",
-                "--sigma-a",
-                "1",
-            ],
+            "eval --model chiang-far --beta-m 0.3 --beta-n 1.5 --sigma-a 1".into(),
             beta_n,
         ),
+        (lut("far-field", "--beta-n-range 0.2,1.5"), beta_n),
         (
-            &[
-                "lut",
-                "--kind",
-                "far-field",
-                "--beta-n-range",
-                "0.2,1.5",
-                "--out",
-                out,
-            ],
-            beta_n,
-        ),
-        (
-            &[
-                "eval",
-                "--beta-m",
-                "0.3",
-                "--beta-n",
-                "0.3",
-                "--sigma-a",
-                "1",
-                "--eta",
-                "5",
-            ],
+            "eval --beta-m 0.3 --beta-n 0.3 --sigma-a 1 --eta 5".into(),
             eta,
         ),
-        (
-            &[
-                "eval",
-                "--model",
-                "marschner",
-                "--sigma-a",
-                "1",
-                "--eta",
-                "5",
-            ],
-            eta,
-        ),
-        (
-            &["lut", "--kind", "gerard", "--eta", "5", "--out", out],
-            eta,
-        ),
-        (&["fit", "--eta", "5"], eta),
-        (
-            &["lut", "--kind", "nguyen-n", "--sigma-a", "-1", "--out", out],
-            sigma_a,
-        ),
+        ("eval --model marschner --sigma-a 1 --eta 5".into(), eta),
+        (lut("gerard", "--eta 5"), eta),
+        ("fit --eta 5".into(), eta),
+        (lut("nguyen-n", "--sigma-a -1"), sigma_a),
     ];
     for (args, message) in cases {
-        let o = hairmath(args, &format!("{HEADER}\n"));
+        let args: Vec<&str> = args.split_whitespace().collect();
+        let o = hairmath(&args, &format!("{HEADER}\n"));
         assert_fails_with(&o, &[message]);
     }
     let _ = std::fs::remove_dir_all(dir);
