@@ -189,6 +189,38 @@ pub struct HairParams {
     pub sigma_a: Absorption,
 }
 
+/// The physical parameters of a hair fibre as plain numbers, by name (alpha in radians, sigma_a
+/// per unit radius and RGB channel), for code that reads them from elsewhere (a file, a
+/// material system): `HairParams::try_from(values)` validates each with its type's one check.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HairValues {
+    /// Longitudinal roughness beta_m.
+    pub beta_m: f64,
+    /// Azimuthal roughness beta_n.
+    pub beta_n: f64,
+    /// Cuticle tilt alpha, radians.
+    pub alpha: f64,
+    /// Relative index of refraction eta.
+    pub eta: f64,
+    /// Absorption per unit fibre radius, linear RGB.
+    pub sigma_a: [f64; 3],
+}
+
+impl TryFrom<HairValues> for HairParams {
+    type Error = ParamError;
+
+    /// Validates every field (beta_m first, then beta_n, alpha, eta, sigma_a).
+    fn try_from(v: HairValues) -> Result<Self, ParamError> {
+        Ok(HairParams {
+            beta_m: LongitudinalRoughness::new(v.beta_m)?,
+            beta_n: AzimuthalRoughness::new(v.beta_n)?,
+            alpha: CuticleTilt::new(v.alpha)?,
+            eta: RefractiveIndex::new(v.eta)?,
+            sigma_a: Absorption::new(v.sigma_a)?,
+        })
+    }
+}
+
 impl Default for HairParams {
     /// Brown hair: beta_m = beta_n = 0.3, a 2 degree tilt, eta = 1.55, eumelanin 1.3.
     fn default() -> Self {
@@ -223,5 +255,15 @@ mod tests {
             HairParams::default().alpha,
             CuticleTilt::from_degrees(2.0).unwrap()
         );
+        let values = HairValues {
+            beta_m: 0.3,
+            beta_n: 0.3,
+            alpha: 2f64.to_radians(),
+            eta: 1.55,
+            sigma_a: HairParams::default().sigma_a.rgb(),
+        };
+        assert_eq!(HairParams::try_from(values), Ok(HairParams::default()));
+        let bad = HairParams::try_from(HairValues { eta: 1.0, ..values }).unwrap_err();
+        assert_eq!(bad, RefractiveIndex::new(1.0).unwrap_err());
     }
 }

@@ -5,9 +5,7 @@
 use hairmath::absorption::Absorption;
 use hairmath::bcsdf::{Bcsdf, ChiangHair, Query, RandomNumbers, SampledBcsdf};
 use hairmath::geometry::{local_direction, V3};
-use hairmath::params::{
-    AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
-};
+use hairmath::params::{HairParams, HairValues};
 use hairmath::quadrature::{gauss_legendre, SphereRule};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
@@ -24,12 +22,12 @@ fn try_params(
     eta: f64,
     sigma_a: [f64; 3],
 ) -> Result<HairParams, hairmath::ParamError> {
-    Ok(HairParams {
-        beta_m: LongitudinalRoughness::new(beta_m)?,
-        beta_n: AzimuthalRoughness::new(beta_n)?,
-        alpha: CuticleTilt::new(alpha)?,
-        eta: RefractiveIndex::new(eta)?,
-        sigma_a: Absorption::new(sigma_a)?,
+    HairParams::try_from(HairValues {
+        beta_m,
+        beta_n,
+        alpha,
+        eta,
+        sigma_a,
     })
 }
 

@@ -3,9 +3,7 @@
 use hairmath::absorption::Absorption;
 use hairmath::bcsdf::{Bcsdf, ChiangFarField, ChiangHair, FarFieldRule, Query};
 use hairmath::geometry::V3;
-use hairmath::params::{
-    AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
-};
+use hairmath::params::{HairParams, HairValues, RefractiveIndex};
 use hairmath::sh::{gaunt_complex, gaunt_real};
 use std::io::Write;
 use std::process::{Command, Output, Stdio};
@@ -58,13 +56,14 @@ fn stderr(o: &Output) -> String {
 
 /// The parameters of the standard flags.
 fn standard_params() -> HairParams {
-    HairParams {
-        beta_m: LongitudinalRoughness::new(0.3).unwrap(),
-        beta_n: AzimuthalRoughness::new(0.25).unwrap(),
-        alpha: CuticleTilt::new(3f64.to_radians()).unwrap(),
-        eta: RefractiveIndex::new(1.55).unwrap(),
-        sigma_a: Absorption::new([0.5, 0.8, 1.4]).unwrap(),
-    }
+    HairParams::try_from(HairValues {
+        beta_m: 0.3,
+        beta_n: 0.25,
+        alpha: 3f64.to_radians(),
+        eta: 1.55,
+        sigma_a: [0.5, 0.8, 1.4],
+    })
+    .unwrap()
 }
 
 /// The model of the standard flags.

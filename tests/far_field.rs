@@ -3,7 +3,6 @@
 //! refinement, the fast integrator against the reference, the sampler against the pdf, and the
 //! zero-roughness limit against Marschner 2003's root sum.
 
-use hairmath::absorption::Absorption;
 use hairmath::azimuthal::{
     marschner_attenuation, marschner_exit_angle, marschner_np, trimmed_logistic,
 };
@@ -13,21 +12,21 @@ use hairmath::bcsdf::{
 };
 use hairmath::fresnel::bravais_eta_perpendicular;
 use hairmath::geometry::{local_direction, V3};
-use hairmath::params::{
-    AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
-};
+use hairmath::params::{HairParams, HairValues};
 use hairmath::quadrature::{adaptive, SphereRule};
 use hairmath::real::wrap_angle;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 fn params(beta_m: f64, beta_n: f64, sigma_a: [f64; 3]) -> HairParams {
-    HairParams {
-        beta_m: LongitudinalRoughness::new(beta_m).unwrap(),
-        beta_n: AzimuthalRoughness::new(beta_n).unwrap(),
-        alpha: CuticleTilt::from_degrees(2.0).unwrap(),
-        eta: RefractiveIndex::new(1.55).unwrap(),
-        sigma_a: Absorption::new(sigma_a).unwrap(),
-    }
+    let alpha = 2f64.to_radians();
+    let values = HairValues {
+        beta_m,
+        beta_n,
+        alpha,
+        eta: 1.55,
+        sigma_a,
+    };
+    HairParams::try_from(values).unwrap()
 }
 
 fn dir(theta_deg: f64, phi: f64) -> V3<f64> {

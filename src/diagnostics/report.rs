@@ -7,9 +7,7 @@ use super::timing::ns_per_eval;
 use crate::absorption::Absorption;
 use crate::bcsdf::{ChiangFarField, ChiangHair, FarFieldRule};
 use crate::error::ParamError;
-use crate::params::{
-    AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
-};
+use crate::params::{HairParams, HairValues};
 use crate::quadrature::SphereRule;
 use core::fmt;
 
@@ -260,12 +258,12 @@ pub struct Report {
 /// # Errors
 /// A roughness outside (0, 1] or a negative or non-finite absorption.
 pub fn report_hair(beta_m: f64, beta_n: f64, sigma_a: [f64; 3]) -> Result<HairParams, ParamError> {
-    Ok(HairParams {
-        beta_m: LongitudinalRoughness::new(beta_m)?,
-        beta_n: AzimuthalRoughness::new(beta_n)?,
-        alpha: CuticleTilt::from_degrees(REPORT_ALPHA_DEG)?,
-        eta: RefractiveIndex::new(REPORT_ETA)?,
-        sigma_a: Absorption::new(sigma_a)?,
+    HairParams::try_from(HairValues {
+        beta_m,
+        beta_n,
+        alpha: REPORT_ALPHA_DEG.to_radians(),
+        eta: REPORT_ETA,
+        sigma_a,
     })
 }
 

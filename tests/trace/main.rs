@@ -9,7 +9,7 @@
 //! `coverage_matches_the_source` scans `src/` so that a new public generic function without a
 //! trace test here fails the suite.
 
-use hairmath::absorption::{segment_length, Absorption};
+use hairmath::absorption::segment_length;
 use hairmath::absorption::{segment_transmittance, PathLength};
 use hairmath::azimuthal::{
     attenuations, attenuations_at_offset, attenuations_from_fresnel, exit_angle,
@@ -36,9 +36,7 @@ use hairmath::lobe::{
 };
 use hairmath::lobe::{i0, i0e_split, log_i0, log_i0e};
 use hairmath::lut::axis_cell;
-use hairmath::params::{
-    AzimuthalRoughness, CuticleTilt, HairParams, LongitudinalRoughness, RefractiveIndex,
-};
+use hairmath::params::{HairParams, HairValues};
 use hairmath::real::{horner, pi, safe_asin, safe_sqrt, trace, wrap_angle, Graph, Real, Traced};
 use hairmath::real::{ArgType, Parameter, ResultType};
 use hairmath::sh::{eval_sh, eval_sh_into};
@@ -189,13 +187,14 @@ const MATERIALS: &[Material] = &[
 ];
 
 fn params((beta_m, beta_n, alpha, eta, sigma_a, _): Material) -> HairParams {
-    HairParams {
-        beta_m: LongitudinalRoughness::new(beta_m).unwrap(),
-        beta_n: AzimuthalRoughness::new(beta_n).unwrap(),
-        alpha: CuticleTilt::new(alpha).unwrap(),
-        eta: RefractiveIndex::new(eta).unwrap(),
-        sigma_a: Absorption::new(sigma_a).unwrap(),
-    }
+    let values = HairValues {
+        beta_m,
+        beta_n,
+        alpha,
+        eta,
+        sigma_a,
+    };
+    HairParams::try_from(values).unwrap()
 }
 
 /// A splitmix64 stream of deterministic pseudo-random inputs.
