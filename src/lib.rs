@@ -15,6 +15,7 @@ pub mod models;
 pub mod params;
 pub mod quadrature;
 pub mod real;
+pub mod registry;
 pub mod sh;
 
 pub use error::ParamError;

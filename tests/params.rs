@@ -5,11 +5,11 @@
 use hairmath::absorption::Absorption;
 use hairmath::absorption::PathLength;
 use hairmath::bcsdf::{
-    find_model, AbsorptionInput, ChiangHair, FarField, FromInputs, InputValue, InputValues,
-    Marschner2003,
+    AbsorptionInput, ChiangHair, FarField, FromInputs, InputValue, InputValues, Marschner2003,
 };
 use hairmath::fit::{lobe_energies, Directions, EnergyRule, FitSettings, TtSlice};
 use hairmath::params::{AzimuthalRoughness, HairParams, RefractiveIndex};
+use hairmath::registry::find_model;
 
 /// The inputs of the Chiang models with one value replaced.
 fn hair_inputs(name: &str, value: InputValue) -> InputValues {

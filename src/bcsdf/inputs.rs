@@ -24,6 +24,9 @@ pub enum InputKind {
     Count,
     /// A flag, off unless given.
     Switch,
+    /// Three numbers, linear RGB (`--NAME R,G,B` on the command line, or one number for all
+    /// three channels); the default is grey.
+    Rgb,
     /// An absorption, given as sigma_a per channel, as melanin concentrations or as a colour
     /// (inverted with the model's beta_n): [`AbsorptionInput`].
     Absorption,
@@ -89,6 +92,8 @@ pub enum InputValue {
     Count(usize),
     /// A switch.
     Switch(bool),
+    /// Three numbers, linear RGB.
+    Rgb(Rgb),
     /// An absorption.
     Absorption(AbsorptionInput),
 }
@@ -149,6 +154,17 @@ impl InputValues {
             Some(InputValue::Switch(v)) => Ok(v),
             None => Ok(false),
             Some(_) => Err(ParamError::Missing { name }),
+        }
+    }
+
+    /// The RGB triple `name`.
+    ///
+    /// # Errors
+    /// [`ParamError::Missing`] if absent or not an RGB triple.
+    pub fn rgb(&self, name: &'static str) -> Result<Rgb, ParamError> {
+        match self.get(name) {
+            Some(InputValue::Rgb(v)) => Ok(v),
+            _ => Err(ParamError::Missing { name }),
         }
     }
 

@@ -1,5 +1,5 @@
 //! The model contract ([`Bcsdf`], [`SampledBcsdf`], [`Model`]), the generic consumers that come
-//! with it (batch evaluation, tracing, the registry of named models), and the reference models:
+//! with it (batch evaluation, tracing), and the reference models:
 //! Chiang et al. 2016's near field ([`ChiangHair`]) and far field ([`ChiangFarField`],
 //! [`ReferenceFarField`]), and Marschner et al. 2003 ([`Marschner2003`]).
 //!
@@ -9,7 +9,7 @@
 //! ([`uniform_block!`](crate::uniform_block)), its physics ([`Bcsdf`], generic over
 //! [`crate::real::Real`]), [`Model`] (uniforms from the parameters, the model from the
 //! uniforms) and [`FromInputs`] (its name and named inputs); then one line in
-//! [`MODELS`] makes `hairmath eval --model NAME` accept it. The README shows an
+//! [`crate::registry::MODELS`] makes `hairmath eval --model NAME` accept it. The README shows an
 //! example.
 
 mod batch;
@@ -18,7 +18,6 @@ mod far_field;
 mod inputs;
 mod marschner;
 mod model;
-mod registry;
 
 pub use batch::{eval_batch, pdf_batch, BatchLanes, BatchLengthError, BatchReal, LANES};
 pub use chiang::{
@@ -37,4 +36,3 @@ pub use model::{
     query_of, query_parameters, trace_eval, trace_model, traced_inputs, Bcsdf, HairSample, Model,
     Query, RandomNumbers, SampledBcsdf, UniformBlock, UniformField, UniformValue,
 };
-pub use registry::{find_model, BuildModel, ModelEntry, MODELS};

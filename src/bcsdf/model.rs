@@ -14,7 +14,7 @@
 //! What a model gets for free from implementing these: batch evaluation over SIMD lanes
 //! ([`crate::bcsdf::eval_batch`]), tracing to shader code ([`trace_eval`]), the white-furnace
 //! and lobe-energy diagnostics ([`crate::diagnostics`]) and, registered in
-//! [`crate::bcsdf::registry`], the command line's `eval`.
+//! [`crate::registry`], the command line's `eval`.
 
 use crate::geometry::V3;
 use crate::real::{

@@ -28,10 +28,12 @@
 // it with a fresh generation).
 #[rustfmt::skip]
 mod constants;
+mod approximation;
 mod frostbite;
 mod gerard;
 mod karis;
 
+pub use approximation::Approximation;
 pub use constants::*;
 pub use frostbite::{offset_attenuation, tt_gaussian, Transmitted};
 pub use gerard::{

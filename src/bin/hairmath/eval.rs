@@ -4,9 +4,9 @@ use crate::flags::{model_names, ModelFlags};
 use crate::CliError;
 use clap::builder::PossibleValuesParser;
 use clap::Args;
-use hairmath::bcsdf::find_model;
 use hairmath::bcsdf::{Bcsdf, Query};
 use hairmath::geometry::V3;
+use hairmath::registry::find_model;
 use std::io::{self, BufRead, BufWriter, Write};
 
 /// Largest accepted deviation of a direction's length from 1.
@@ -19,7 +19,7 @@ const REQUIRED: [&str; 7] = ["wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z", "h"
 /// Arguments of `hairmath eval`.
 #[derive(Args, Debug)]
 pub struct EvalArgs {
-    /// The scattering model (`hairmath::bcsdf::MODELS`).
+    /// The scattering model (`hairmath::registry::MODELS`).
     #[arg(long, default_value = "chiang", value_parser = PossibleValuesParser::new(model_names()))]
     model: String,
     /// The models' inputs.

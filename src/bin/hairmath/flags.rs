@@ -1,5 +1,5 @@
 //! The command-line flags of the registered models' inputs
-//! ([`hairmath::bcsdf::MODELS`]): one flag per input name, shared by every model
+//! ([`hairmath::registry::MODELS`]): one flag per input name, shared by every model
 //! that has the input, spelled from the input's kind:
 //!
 //! | kind | flag |
@@ -8,6 +8,7 @@
 //! | angle | `--NAME-deg DEGREES` |
 //! | count | `--NAME N` |
 //! | switch | `--NAME` |
+//! | RGB | `--NAME R,G,B` (or one number for all three) |
 //! | absorption | one of `--sigma-a R,G,B`, `--melanin EU,PHEO`, `--color R,G,B` |
 //!
 //! (`NAME` with `_` written `-`). A model's defaults fill what is not given; a flag of an input
@@ -17,7 +18,7 @@ use crate::CliError;
 use clap::builder::PossibleValue;
 use clap::{Arg, ArgAction, ArgGroup, ArgMatches, Args, Command, FromArgMatches};
 use hairmath::bcsdf::{AbsorptionInput, Input, InputKind, InputValue, InputValues};
-use hairmath::bcsdf::{ModelEntry, MODELS};
+use hairmath::registry::{ModelEntry, MODELS};
 
 /// The ids of the three absorption flags, in the order the messages list them.
 const ABSORPTION_FLAGS: [&str; 3] = ["sigma_a", "melanin", "color"];
@@ -116,6 +117,10 @@ impl Args for ModelFlags {
                     continue;
                 }
                 InputKind::Switch => Arg::new(input.name).action(ArgAction::SetTrue),
+                InputKind::Rgb => Arg::new(input.name)
+                    .value_name("R,G,B")
+                    .value_parser(parse_rgb)
+                    .allow_hyphen_values(true),
                 InputKind::Count => Arg::new(input.name)
                     .value_name("N")
                     .value_parser(clap::value_parser!(usize)),
@@ -195,6 +200,9 @@ impl FromArgMatches for ModelFlags {
             let value = match input.kind {
                 InputKind::Absorption => absorption_value(m).map(InputValue::Absorption),
                 InputKind::Switch => m.get_flag(input.name).then_some(InputValue::Switch(true)),
+                InputKind::Rgb => m
+                    .get_one::<[f64; 3]>(input.name)
+                    .map(|&v| InputValue::Rgb(v)),
                 InputKind::Count => m
                     .get_one::<usize>(input.name)
                     .map(|&n| InputValue::Count(n)),
@@ -253,6 +261,7 @@ impl ModelFlags {
                 (None, InputKind::Switch, _) => InputValue::Switch(false),
                 (None, InputKind::Angle, Some(d)) => InputValue::Number(d.to_radians()),
                 (None, InputKind::Count, Some(d)) => InputValue::Count(d as usize),
+                (None, InputKind::Rgb, Some(d)) => InputValue::Rgb([d; 3]),
                 (None, _, Some(d)) => InputValue::Number(d),
                 (None, _, None) => {
                     return Err(CliError::MissingFlag {
