@@ -2,12 +2,12 @@
 //! line per model, the reference models of [`crate::bcsdf`] and the real-time approximations
 //! of [`crate::models`].
 
-use crate::bcsdf::trace_eval;
+use crate::bcsdf::{trace_eval, BatchEval};
 use crate::bcsdf::{Bcsdf, ChiangHair, FarField, FromInputs, Input, InputValues, Marschner2003};
 use crate::error::ParamError;
 use crate::models::Approximation;
 use crate::params::HairParams;
-use crate::real::Graph;
+use crate::real::{BatchReal, Graph};
 
 /// Builds a model from its input values, evaluated in `f64`.
 pub type BuildModel = fn(&InputValues) -> Result<Box<dyn Bcsdf<f64>>, ParamError>;
@@ -45,7 +45,13 @@ pub struct ApproximationEntry {
     pub build_f32: BuildModelF32,
     /// Traces its evaluation.
     pub trace: TraceModel,
+    /// Builds it on the SIMD lanes of [`BatchReal`].
+    pub build_batch: BuildModelBatch,
 }
+
+/// Builds a model from its input values on the SIMD lanes of [`BatchReal`] (the uniforms
+/// rounded once to `f32`).
+pub type BuildModelBatch = fn(&InputValues) -> Result<Box<dyn BatchEval>, ParamError>;
 
 impl ModelEntry {
     /// The entry of model `M`.
@@ -63,6 +69,7 @@ impl ModelEntry {
     pub const fn approximation<M: Approximation + 'static>() -> Self
     where
         M::In<f32>: 'static,
+        M::In<BatchReal>: 'static,
     {
         ModelEntry {
             approximation: Some(ApproximationEntry {
@@ -70,6 +77,7 @@ impl ModelEntry {
                 fitted_inputs: M::FITTED_INPUTS,
                 build_f32: build_f32::<M>,
                 trace: trace::<M>,
+                build_batch: build_batch::<M>,
             }),
             ..Self::of::<M>()
         }
@@ -81,6 +89,13 @@ where
     M::In<f32>: 'static,
 {
     Ok(Box::new(M::from_inputs(values)?.instantiate::<f32>()))
+}
+
+fn build_batch<M: Approximation>(values: &InputValues) -> Result<Box<dyn BatchEval>, ParamError>
+where
+    M::In<BatchReal>: 'static,
+{
+    Ok(Box::new(M::from_inputs(values)?.instantiate::<BatchReal>()))
 }
 
 fn trace<M: Approximation>(values: &InputValues) -> Result<Graph, ParamError> {

@@ -178,6 +178,35 @@ pub fn eval_batch<L: BatchLanes, M: Bcsdf<L>>(
     Ok(())
 }
 
+/// A model instantiated on the lanes of [`BatchReal`], behind a trait object: what a caller
+/// that chooses the model at run time (the registry, the benchmarks) batch-evaluates.
+/// Implemented by every `Bcsdf<BatchReal>`.
+pub trait BatchEval {
+    /// [`eval_batch`] with the lanes of [`BatchReal`].
+    ///
+    /// # Errors
+    /// As [`eval_batch`].
+    fn eval_batch_lanes(
+        &self,
+        wi: &[[f32; 3]],
+        wo: &[[f32; 3]],
+        h: &[f32],
+        out: &mut [[f32; 3]],
+    ) -> Result<(), BatchLengthError>;
+}
+
+impl<M: Bcsdf<BatchReal>> BatchEval for M {
+    fn eval_batch_lanes(
+        &self,
+        wi: &[[f32; 3]],
+        wo: &[[f32; 3]],
+        h: &[f32],
+        out: &mut [[f32; 3]],
+    ) -> Result<(), BatchLengthError> {
+        eval_batch::<BatchReal, M>(self, wi, wo, h, out)
+    }
+}
+
 /// [`SampledBcsdf::pdf`] of `wi[k]` given `wo[k]`, `h[k]` into `out[k]`, `L::LANES` samples at
 /// a time (the same generic code as the scalar path, instantiated with `L`).
 ///

@@ -19,7 +19,7 @@ mod inputs;
 mod marschner;
 mod model;
 
-pub use batch::{eval_batch, pdf_batch, BatchLanes, BatchLengthError, BatchReal, LANES};
+pub use batch::{eval_batch, pdf_batch, BatchEval, BatchLanes, BatchLengthError, BatchReal, LANES};
 pub use chiang::{
     logistic_scale, longitudinal_variance, AtOffset, AzimuthalFactors, ChiangHair, ChiangUniforms,
     Offsets, OffsetsIn, Outgoing, CHIANG_LOBES,

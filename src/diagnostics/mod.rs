@@ -46,12 +46,14 @@
 //! [`ChiangFarField::azimuthal`]: crate::bcsdf::ChiangFarField::azimuthal
 //! [`ChiangHair::far_field_azimuthal_reference`]: crate::bcsdf::ChiangHair::far_field_azimuthal_reference
 
+mod comparison;
 mod energy;
 mod furnace;
 mod integrator;
 mod report;
 mod timing;
 
+pub use comparison::{DirectionPairs, EnergyReference, ModelError, OpCounts, ReferenceSamples};
 pub use energy::{lobe_energies, LobeEnergies};
 pub use furnace::{albedo, viewing_direction, white_furnace, Furnace, FurnaceCase, VIEW_AZIMUTH};
 pub use integrator::{
@@ -64,7 +66,7 @@ pub use report::{
     INTEGRATOR_SIGMA_A, REPORT_ALPHA_DEG, REPORT_BETA, REPORT_ETA, REPORT_HAIRS, SHARP_BETA,
     TIMING_SIGMA_A,
 };
-pub use timing::{ns_per_eval, TimingScalar, TIMING_INPUTS};
+pub use timing::{ns_per_batch_eval, ns_per_eval, TimingScalar, TIMING_INPUTS};
 
 /// Adds `weight * value` to `sum`, channel by channel.
 fn accumulate(sum: &mut [f64; 3], weight: f64, value: [f64; 3]) {

@@ -1,6 +1,6 @@
 //! Indicative evaluation timings on deterministic inputs.
 
-use crate::bcsdf::{Bcsdf, Query};
+use crate::bcsdf::{BatchEval, Bcsdf, Query};
 use crate::geometry::{local_direction, V3};
 use crate::quadrature::kronecker;
 use crate::real::Real;
@@ -64,4 +64,24 @@ pub fn ns_per_eval<R: TimingScalar, M: Bcsdf<R> + ?Sized>(model: &M, calls: usiz
     ns_per_call(calls, |k| {
         black_box(model.eval(black_box(&queries[k % TIMING_INPUTS])));
     })
+}
+
+/// Mean wall-clock nanoseconds per sample of a batch evaluation ([`BatchEval`], the SIMD
+/// lanes of [`crate::real::BatchReal`]), over `samples` samples in batches of
+/// [`TIMING_INPUTS`] deterministic queries (those of [`ns_per_eval`], rounded to `f32`).
+/// Indicative only, as [`ns_per_eval`]; 0 when `samples` is 0.
+pub fn ns_per_batch_eval(model: &dyn BatchEval, samples: usize) -> f64 {
+    let queries: Vec<Query<f32>> = (0..TIMING_INPUTS).map(timing_query).collect();
+    let wi: Vec<[f32; 3]> = queries.iter().map(|q| [q.wi.x, q.wi.y, q.wi.z]).collect();
+    let wo: Vec<[f32; 3]> = queries.iter().map(|q| [q.wo.x, q.wo.y, q.wo.z]).collect();
+    let h: Vec<f32> = queries.iter().map(|q| q.h).collect();
+    let mut out = vec![[0.0_f32; 3]; TIMING_INPUTS];
+    let batches = samples.div_ceil(TIMING_INPUTS);
+    let ns = ns_per_call(batches, |_| {
+        model
+            .eval_batch_lanes(black_box(&wi), &wo, &h, &mut out)
+            .expect("the timing batch has equal lengths");
+        black_box(&out);
+    });
+    ns / TIMING_INPUTS as f64
 }

@@ -21,10 +21,16 @@ mod hg;
 mod karis;
 
 #[cfg(feature = "fit")]
+mod comparison;
+#[cfg(feature = "fit")]
+mod model_inputs;
+#[cfg(feature = "fit")]
 mod optimise;
 
 #[cfg(feature = "fit")]
 pub use absorption_exponent::*;
+#[cfg(feature = "fit")]
+pub use comparison::*;
 #[cfg(feature = "fit")]
 pub use frostbite::*;
 #[cfg(feature = "fit")]
@@ -33,6 +39,8 @@ pub use generate::*;
 pub use hg::*;
 #[cfg(feature = "fit")]
 pub use karis::*;
+#[cfg(feature = "fit")]
+pub use model_inputs::*;
 #[cfg(feature = "fit")]
 pub use optimise::{
     is_coordinate_minimum, linear_least_squares, minimize, minimize_scalar, FitError, Minimum,

@@ -386,6 +386,17 @@ impl Graph {
         live
     }
 
+    /// The nodes the outputs depend on, in evaluation order (each computed value once: equal
+    /// nodes are recorded once).
+    pub fn live_nodes(&self) -> Vec<Node> {
+        let live = self.live();
+        self.nodes
+            .iter()
+            .zip(&live)
+            .filter_map(|(n, &l)| l.then_some(*n))
+            .collect()
+    }
+
     /// How many live nodes perform the unary operation `op` (for example exponentials).
     pub fn count_unary(&self, op: Unary) -> usize {
         let live = self.live();

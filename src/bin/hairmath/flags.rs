@@ -19,6 +19,7 @@ use clap::builder::PossibleValue;
 use clap::{Arg, ArgAction, ArgGroup, ArgMatches, Args, Command, FromArgMatches};
 use hairmath::bcsdf::{AbsorptionInput, Input, InputKind, InputValue, InputValues};
 use hairmath::registry::{ModelEntry, MODELS};
+use serde_json::json;
 
 /// The ids of the three absorption flags, in the order the messages list them.
 const ABSORPTION_FLAGS: [&str; 3] = ["sigma_a", "melanin", "color"];
@@ -293,6 +294,42 @@ fn not_for_model(name: &str) -> CliError {
         flags: same_owners,
         models: owners.iter().map(|m| m.to_string()).collect(),
     }
+}
+
+/// The values of `model`'s inputs as a JSON object keyed by their flags without the dashes
+/// (`beta-m`, `alpha-deg` in degrees, `roughness`; an absorption under the flag it would be
+/// given with: `sigma-a`, `melanin` or `color`; RGB values as arrays of three).
+pub fn input_flag_values(model: &str, values: &InputValues) -> serde_json::Value {
+    let mut object = serde_json::Map::new();
+    let inputs = MODELS
+        .iter()
+        .find(|m| m.name == model)
+        .map_or(&[][..], |m| m.inputs);
+    for input in inputs {
+        let (key, value) = match (input.kind, values.get(input.name)) {
+            (_, None) => continue,
+            (InputKind::Angle, Some(InputValue::Number(v))) => (long(input), json!(v.to_degrees())),
+            (_, Some(InputValue::Number(v))) => (long(input), json!(v)),
+            (_, Some(InputValue::Count(n))) => (long(input), json!(n)),
+            (_, Some(InputValue::Switch(b))) => (long(input), json!(b)),
+            (_, Some(InputValue::Rgb(c))) => (long(input), json!(c)),
+            (_, Some(InputValue::Absorption(AbsorptionInput::SigmaA(s)))) => {
+                ("sigma-a".to_string(), json!(s))
+            }
+            (_, Some(InputValue::Absorption(AbsorptionInput::Color(c)))) => {
+                ("color".to_string(), json!(c))
+            }
+            (
+                _,
+                Some(InputValue::Absorption(AbsorptionInput::Melanin {
+                    eumelanin,
+                    pheomelanin,
+                })),
+            ) => ("melanin".to_string(), json!([eumelanin, pheomelanin])),
+        };
+        object.insert(key, value);
+    }
+    serde_json::Value::Object(object)
 }
 
 #[cfg(test)]

@@ -3,6 +3,8 @@
 //! - `hairmath eval` evaluates a scattering model on directions read as CSV from stdin.
 //! - `hairmath report` prints lobe energies of a few hair colours, a white-furnace check and
 //!   an indicative evaluation speed, as markdown or (`--json`) JSON.
+//! - `hairmath models` measures every real-time model against the reference: error at its
+//!   mapped and at its fitted inputs, energy error and cost, one row per model and hair.
 //! - `hairmath lut` bakes a lookup table and writes it as raw f32 + JSON (and PNG).
 //! - `hairmath fit` regenerates the fitted constants of the source documents and prints them
 //!   beside the published values, with errors; it can write the generated constants file.
@@ -16,6 +18,7 @@ mod eval;
 mod fit;
 mod flags;
 mod lut;
+mod models;
 mod report;
 mod sh;
 
@@ -65,6 +68,17 @@ enum Command {
     /// minute in a release build; --quick shrinks every quadrature (a few seconds); --json
     /// prints the same figures as one JSON object.
     Report(report::ReportArgs),
+    /// Measure every real-time model against the reference (Chiang et al. 2016's far field):
+    /// one row per model and hair of a fixed grid, with the error E at the model's mapped
+    /// inputs and at inputs fitted with argmin (and those inputs), the energy error and the
+    /// cost (ns per evaluation, operation counts of the traced code).
+    ///
+    /// E = sqrt(sum over direction pairs and RGB of (S_model - S_ref)^2 / sum of S_ref^2), on
+    /// a fixed low-discrepancy set of pairs uniform on the product of two spheres; each E comes
+    /// with its value on half the pairs. The full grid (4 colours x 3 beta_m x 3 beta_n) takes
+    /// several minutes in a release build (a progress bar shows on stderr); --brown computes
+    /// the README's row set only.
+    Models(models::ModelsArgs),
     /// Bake a lookup table (Nguyen-Donnelly M or N textures, Gerard's N_p LUT, or a far-field
     /// N_p table), write it as raw little-endian f32 with a JSON description (and 8-bit PNG
     /// for 2D tables) to --out, and print the error of lookup against direct evaluation.
@@ -133,6 +147,8 @@ pub enum CliError {
         /// The models that take them.
         models: Vec<String>,
     },
+    /// The model comparison failed.
+    Comparison(hairmath::fit::ComparisonError),
     /// Reading or writing failed.
     Io(io::Error),
 }
@@ -167,6 +183,7 @@ impl fmt::Display for CliError {
                     models.join(", ")
                 )
             }
+            CliError::Comparison(e) => write!(f, "{e}"),
             CliError::Io(e) => write!(f, "I/O error: {e}"),
         }
     }
@@ -202,11 +219,22 @@ impl From<hairmath::fit::FitError> for CliError {
     }
 }
 
+impl From<hairmath::fit::ComparisonError> for CliError {
+    fn from(e: hairmath::fit::ComparisonError) -> Self {
+        match e {
+            hairmath::fit::ComparisonError::Param(p) => CliError::Params(p),
+            hairmath::fit::ComparisonError::Fit(f) => f.into(),
+            other => CliError::Comparison(other),
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Eval(args) => eval::run(args),
         Command::Report(args) => report::run(args),
+        Command::Models(args) => models::run(args),
         Command::Lut(args) => lut::run(args),
         Command::Fit(args) => fit::run(args),
         Command::Wigner3j(args) => sh::run_wigner3j(args),

@@ -1,0 +1,231 @@
+//! The comparison of real-time models with the reference (`hairmath models`): the error E, its
+//! convergence, the fit of a model's inputs and the operation counts, checked on models whose
+//! answers are known in closed form.
+
+use hairmath::bcsdf::{
+    Bcsdf, ChiangFarField, FarFieldRule, FromInputs, Input, InputKind, InputValue, InputValues,
+    Model, Query,
+};
+use hairmath::diagnostics::{DirectionPairs, EnergyReference, OpCounts, ReferenceSamples};
+use hairmath::fit::{fit_model_inputs, input_loss, inputs_at, is_coordinate_minimum};
+use hairmath::models::Approximation;
+use hairmath::params::{HairParams, LongitudinalRoughness};
+use hairmath::quadrature::SphereRule;
+use hairmath::real::Real;
+use hairmath::registry::ModelEntry;
+use hairmath::ParamError;
+
+hairmath::uniform_block! {
+    /// S per channel.
+    pub struct ConstantUniforms<R> {
+        /// albedo / (4 pi).
+        pub density: [R; 3],
+    }
+}
+
+/// A fibre that scatters uniformly, `S = albedo / (4 pi)`: its best fit to any reference is
+/// known in closed form (the mean of the reference's values).
+struct Constant<R> {
+    uniforms: ConstantUniforms<R>,
+}
+
+impl<R: Real> Bcsdf<R> for Constant<R> {
+    fn lobe_names(&self) -> &'static [&'static str] {
+        &["uniform"]
+    }
+    fn eval_lobes(&self, query: &Query<R>) -> Vec<[R; 3]> {
+        vec![self.eval(query)]
+    }
+    fn eval(&self, _query: &Query<R>) -> [R; 3] {
+        self.uniforms.density
+    }
+}
+
+impl Model for Constant<f64> {
+    type Uniforms<R: Real> = ConstantUniforms<R>;
+    type In<R: Real> = Constant<R>;
+    fn uniforms(&self) -> ConstantUniforms<f64> {
+        self.uniforms
+    }
+    fn with_uniforms<R: Real>(&self, uniforms: ConstantUniforms<R>) -> Constant<R> {
+        Constant { uniforms }
+    }
+}
+
+impl FromInputs for Constant<f64> {
+    const NAME: &'static str = "constant";
+    const SUMMARY: &'static str = "S = albedo / (4 pi)";
+    const INPUTS: &'static [Input] = &[Input {
+        name: "albedo",
+        kind: InputKind::Rgb,
+        help: "albedo per channel, in [0, 1]",
+        default: Some(0.5),
+        conflicts_with: &[],
+    }];
+    fn from_inputs(values: &InputValues) -> Result<Self, ParamError> {
+        let albedo = values.rgb("albedo")?;
+        for a in albedo {
+            ParamError::check("albedo", a, "must be in [0, 1]", |a| {
+                (0.0..=1.0).contains(&a)
+            })?;
+        }
+        let density = albedo.map(|a| a / (4.0 * std::f64::consts::PI));
+        Ok(Constant {
+            uniforms: ConstantUniforms { density },
+        })
+    }
+}
+
+impl Approximation for Constant<f64> {
+    fn mapped_inputs(_hair: &HairParams) -> InputValues {
+        let mut v = InputValues::new();
+        v.set("albedo", InputValue::Rgb([0.5; 3]));
+        v
+    }
+    const FITTED_INPUTS: &'static [&'static str] = &["albedo"];
+}
+
+fn far_field(nodes: usize) -> ChiangFarField<f64> {
+    ChiangFarField::with_rule(
+        &HairParams::default(),
+        &FarFieldRule::gauss_legendre(nodes).unwrap(),
+    )
+}
+
+fn reference(pairs: usize) -> ReferenceSamples {
+    ReferenceSamples::new(&far_field(64), DirectionPairs::kronecker(pairs))
+}
+
+#[test]
+fn pairs_are_unit_and_uniform_in_the_sines() {
+    let pairs = DirectionPairs::kronecker(4096);
+    let mut mean_sin = [0.0; 2];
+    let mut mean_sin2 = [0.0; 2];
+    for &(wi, wo) in pairs.pairs() {
+        for w in [wi, wo] {
+            assert!((w.dot(w) - 1.0).abs() < 1e-12);
+        }
+        for (k, w) in [wi, wo].iter().enumerate() {
+            mean_sin[k] += w.x / 4096.0;
+            mean_sin2[k] += w.x * w.x / 4096.0;
+        }
+    }
+    // Uniform on the sphere: sin theta uniform on [-1, 1], mean 0 and mean square 1/3.
+    for k in 0..2 {
+        assert!(mean_sin[k].abs() < 2e-3, "{mean_sin:?}");
+        assert!((mean_sin2[k] - 1.0 / 3.0).abs() < 2e-3, "{mean_sin2:?}");
+    }
+    // The set of half the size is the first half.
+    assert_eq!(
+        DirectionPairs::kronecker(2048).pairs(),
+        &pairs.pairs()[..2048]
+    );
+}
+
+#[test]
+fn the_error_is_zero_for_the_reference_and_one_for_a_dark_model() {
+    let r = reference(2048);
+    let e = r.relative_error(&far_field(64));
+    assert_eq!((e.full, e.half), (0.0, 0.0));
+    let zero = Constant {
+        uniforms: ConstantUniforms { density: [0.0; 3] },
+    };
+    let e = r.relative_error(&zero);
+    assert!(
+        (e.full - 1.0).abs() < 1e-15 && (e.half - 1.0).abs() < 1e-15,
+        "{e:?}"
+    );
+}
+
+#[test]
+fn the_reference_far_field_is_converged_in_its_node_count() {
+    // The comparison's reference has 64 nodes in h; against 256 nodes its own E is below
+    // 1e-5 on each roughness of the grid (measured: 3.5e-6, 4.5e-6 and 2.6e-6 at beta_m =
+    // 0.3, 0.15 and 0.6, beta_n = 0.3, 2^16 pairs), while 8 nodes are visibly off.
+    for beta_m in [0.15, 0.3, 0.6] {
+        let hair = HairParams {
+            beta_m: LongitudinalRoughness::new(beta_m).unwrap(),
+            ..HairParams::default()
+        };
+        let ff = |n| ChiangFarField::with_rule(&hair, &FarFieldRule::gauss_legendre(n).unwrap());
+        let fine = ReferenceSamples::new(&ff(256), DirectionPairs::kronecker(1 << 14));
+        let e = fine.relative_error(&ff(64));
+        assert!(e.full < 1e-5, "beta_m {beta_m}: {e:?}");
+        assert!(fine.relative_error(&ff(8)).full > 0.1);
+    }
+}
+
+#[test]
+fn the_fit_finds_the_closed_form_optimum_of_a_constant_model() {
+    let r = reference(1 << 13);
+    let entry = ModelEntry::approximation::<Constant<f64>>();
+    let start = Constant::mapped_inputs(&HairParams::default());
+    let fit = fit_model_inputs(&entry, Constant::FITTED_INPUTS, &start, &r).unwrap();
+    // Least squares of a constant: the mean of the reference's values per channel.
+    let n = r.values().len() as f64;
+    let mean: Vec<f64> = (0..3)
+        .map(|c| r.values().iter().map(|v| v[c]).sum::<f64>() / n)
+        .collect();
+    let InputValue::Rgb(albedo) = fit.values.get("albedo").unwrap() else {
+        panic!("albedo is an RGB input")
+    };
+    for c in 0..3 {
+        let density = albedo[c] / (4.0 * std::f64::consts::PI);
+        assert!(
+            (density - mean[c]).abs() < 1e-3 * mean[c],
+            "channel {c}: {density} vs {}",
+            mean[c]
+        );
+    }
+    assert_eq!(fit.minimum.termination, "Solver converged");
+    let loss = |x: &[f64]| input_loss(&entry, &inputs_at(&start, Constant::FITTED_INPUTS, x), &r);
+    assert!(is_coordinate_minimum(loss, &fit.minimum.params, 1e-2));
+}
+
+#[test]
+fn inputs_outside_the_domain_cost_the_infeasible_loss() {
+    let r = reference(256);
+    let entry = ModelEntry::approximation::<Constant<f64>>();
+    let mut bad = InputValues::new();
+    bad.set("albedo", InputValue::Rgb([2.0, 0.5, 0.5]));
+    assert_eq!(input_loss(&entry, &bad, &r), hairmath::fit::INFEASIBLE_LOSS);
+}
+
+#[test]
+fn energy_errors_are_relative_albedo_differences() {
+    let reference = far_field(64);
+    let energy = EnergyReference::new(&reference, SphereRule::new(16, 8, 64), &[0.0, 45.0, 80.0]);
+    assert_eq!(energy.errors(&reference), vec![0.0; 3]);
+    // A constant model's albedo is its albedo: the error is known from the reference's.
+    let constant = Constant {
+        uniforms: ConstantUniforms {
+            density: [0.3 / (4.0 * std::f64::consts::PI); 3],
+        },
+    };
+    for (e, a) in energy.errors(&constant).iter().zip(energy.albedos()) {
+        let mean = (a[0] + a[1] + a[2]) / 3.0;
+        assert!(
+            (e - (0.3 - mean) / mean).abs() < 1e-12,
+            "{e} vs albedo {a:?}"
+        );
+    }
+}
+
+#[test]
+fn operation_counts_count_what_the_outputs_use() {
+    let graph = hairmath::real::trace(2, |x| {
+        let _unused = x[0].exp();
+        vec![x[0] * x[1] + x[0].sqrt(), x[1].cos().max(x[0])]
+    });
+    let ops = OpCounts::of(&graph);
+    assert_eq!(
+        ops,
+        OpCounts {
+            add_mul: 2,
+            div: 0,
+            sqrt: 1,
+            transcendental: 1,
+            select: 1,
+        }
+    );
+}
