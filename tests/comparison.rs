@@ -229,3 +229,51 @@ fn operation_counts_count_what_the_outputs_use() {
         }
     );
 }
+
+/// Every registered approximation on the README's hair (brown, beta_m = beta_n = 0.3): E at
+/// the mapped and at the fitted inputs is converged to two significant digits (the first half
+/// of the pairs gives the same figure within 5e-3 relative), the fit converged and is a
+/// minimum along every coordinate, and the fitted E is no worse than the mapped one.
+#[test]
+fn every_registered_approximation_has_converged_errors_and_a_fitted_minimum() {
+    let settings = ComparisonSettings {
+        timing_calls: 0,
+        ..ComparisonSettings::brown()
+    };
+    assert!(!settings.models.is_empty());
+    let rows = compare_models(&settings, &|_, _| {}).unwrap();
+    assert_eq!(rows.len(), settings.models.len());
+    let hair = settings.hairs[0].params().unwrap();
+    let rule = FarFieldRule::gauss_legendre(settings.reference_nodes).unwrap();
+    let reference = ReferenceSamples::new(
+        &ChiangFarField::with_rule(&hair, &rule),
+        DirectionPairs::kronecker(settings.fit_pairs),
+    );
+    for r in &rows {
+        let name = r.model;
+        for e in [r.error_mapped, r.error_fitted] {
+            assert!(e.full.is_finite() && e.full > 0.0, "{name}: {e:?}");
+            assert!(e.relative_change() < 5e-3, "{name}: not converged, {e:?}");
+        }
+        assert!(
+            r.error_fitted.full <= r.error_mapped.full * 1.001,
+            "{name}: {r:?}"
+        );
+        assert_eq!(r.fit.minimum.termination, "Solver converged", "{name}");
+        let (entry, approximation) = hairmath::fit::approximation(name).unwrap();
+        let loss = |x: &[f64]| {
+            let values = inputs_at(&r.mapped_inputs, approximation.fitted_inputs, x);
+            input_loss(entry, &values, &reference)
+        };
+        assert!(
+            is_coordinate_minimum(loss, &r.fit.minimum.params, 1e-2),
+            "{name}: {:?} is not a minimum",
+            r.fit.minimum.params
+        );
+        assert!(
+            r.energy_error.iter().all(|e| e.is_finite()),
+            "{name}: {r:?}"
+        );
+        assert!(r.cost.ops.add_mul > 0, "{name}: {:?}", r.cost.ops);
+    }
+}

@@ -155,6 +155,21 @@ impl ComparisonSettings {
     }
 }
 
+impl ComparisonSettings {
+    /// [`ComparisonSettings::brown`] on less work, for tests and `hairmath report --quick`:
+    /// 2^12 pairs (fits on 2^11), albedos on 16 x 8 x 64 sphere nodes, short timings. The
+    /// errors are then rough.
+    pub fn quick() -> Self {
+        ComparisonSettings {
+            pairs: 1 << 12,
+            fit_pairs: 1 << 11,
+            albedo_sphere: [16, 8, 64],
+            timing_calls: 20_000,
+            ..Self::brown()
+        }
+    }
+}
+
 /// One model on one hair.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ModelRow {

@@ -81,7 +81,7 @@ pub fn run(args: &ModelsArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn row_json(r: &ModelRow, settings: &ComparisonSettings) -> Value {
+pub(crate) fn row_json(r: &ModelRow, settings: &ComparisonSettings) -> Value {
     json!({
         "model": r.model,
         "colour": r.hair.colour,
@@ -127,7 +127,7 @@ fn ops_json(o: &OpCounts) -> Value {
     })
 }
 
-fn markdown(
+pub(crate) fn markdown(
     out: &mut impl Write,
     rows: &[ModelRow],
     settings: &ComparisonSettings,

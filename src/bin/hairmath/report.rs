@@ -12,7 +12,7 @@ use hairmath::diagnostics::{
     LobeEnergies, Report, ReportDetail, ReportSettings, FAR_NODES, INTEGRATOR_SIGMA_A, PEAK_FLOOR,
     REFERENCE_TOL, REFINED_TOL, REPORT_ALPHA_DEG, REPORT_BETA, REPORT_ETA, SHARP_BETA,
 };
-use hairmath::fit::ConstantFit;
+use hairmath::fit::{compare_models, ComparisonSettings, ConstantFit};
 use serde_json::{json, Value};
 use std::io::{self, BufWriter, Write};
 
@@ -43,6 +43,8 @@ pub struct ReportArgs {
     ///   `beta_n`, `reference_us`, `reference_refinement`, `errors`, a list of `nodes`, `max`,
     ///   `mean`) and `timings` (a list of `nodes`, `ns`).
     /// - `fitted_constants`: the rows of `hairmath fit --json`.
+    /// - `models`: the rows of `hairmath models --brown --json` (with --quick on fewer
+    ///   direction pairs).
     ///
     /// The timings (`ns_per_call_*`, `reference_us`, `ns`) are wall-clock and vary from run
     /// to run; every other value is deterministic.
@@ -59,13 +61,28 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
     };
     let report = report(&ReportSettings::new(detail))?;
     let (_, fits) = crate::fit::fits(REPORT_ETA)?;
+    let models = if args.quick {
+        ComparisonSettings::quick()
+    } else {
+        ComparisonSettings::brown()
+    };
+    let rows = compare_models(&models, &|_, _| {})?;
     let mut out = BufWriter::new(io::stdout().lock());
     if args.json {
-        let text = serde_json::to_string_pretty(&json(&report, &fits.records))
-            .map_err(io::Error::other)?;
+        let mut value = json(&report, &fits.records);
+        value["models"] = rows
+            .iter()
+            .map(|r| crate::models::row_json(r, &models))
+            .collect();
+        let text = serde_json::to_string_pretty(&value).map_err(io::Error::other)?;
         writeln!(out, "{text}")?;
     } else {
         markdown(&mut out, &report, &fits.records)?;
+        writeln!(
+            out,
+            "\n## Real-time models (`hairmath models`, brown hair, beta_m = beta_n = 0.3)\n"
+        )?;
+        crate::models::markdown(&mut out, &rows, &models)?;
     }
     out.flush()?;
     Ok(())
