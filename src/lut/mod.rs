@@ -11,6 +11,11 @@
 //! shader code; a GPU sampling the same data as a texture with texel-centre addressing uses
 //! `u = (0.5 + t (n - 1)) / n` with `t = (x - min) / (max - min)`.
 //!
+//! Generic code fetches from a [`SharedTable`] (a table shared by reference counting, its
+//! number of axes and channels in its type) with [`crate::real::Real::sample_table`]: `f32`
+//! and every SIMD lane compute exactly [`Table::lookup_into`], `f64` interpolates in `f64`,
+//! and a trace records the fetch, which prints as a texture sample.
+//!
 //! # Bakers ([`Baker`])
 //!
 //! All evaluation is f64, single-threaded and deterministic, so a table regenerates bit for bit
@@ -36,6 +41,7 @@
 
 mod bake;
 mod io;
+mod shared;
 mod table;
 
 pub use bake::{
@@ -45,6 +51,7 @@ pub use bake::{
 #[cfg(feature = "png")]
 pub use io::write_png;
 pub use io::{json_description, quantize_rgba8, raw_bytes, read_raw, write_raw, GENERATOR};
+pub use shared::SharedTable;
 pub use table::{
     axis_cell, Axis, ParamValue, Table, TableMeta, MAX_AXES, MAX_AXIS_SIZE, MAX_CHANNELS,
     MAX_VALUES,

@@ -13,6 +13,10 @@
 //! no data-dependent control flow (use [`Real::select`], both arms must be safe to evaluate),
 //! fixed-count loops, constants written as `R::c(1.55)`. Control flow on the type-level
 //! constant [`Real::DOUBLE`] is allowed: it picks reference-grade approximations for `f64`.
+//!
+//! Lookup tables (textures in a shader) are read with [`Real::sample_table`] from a
+//! [`SharedTable`]: multilinear interpolation, clamp to the edge, with the semantics of
+//! [`crate::lut::Table::lookup_into`] in every instantiation.
 
 mod simd;
 mod traced;
@@ -20,10 +24,12 @@ mod traced;
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Sub, SubAssign};
 
+use crate::lut::SharedTable;
+
 pub use simd::BatchReal;
 pub use traced::{
     trace, trace_with, ArgType, Binary, Graph, Node, Parameter, ResultType, Signature, StructType,
-    Traced, TracedMask, Unary,
+    Traced, TracedMask, Unary, NO_COORDINATE, TEXTURE_CHANNELS,
 };
 
 /// A scalar (or a SIMD vector of scalars, or a symbolic value) shading code computes with.
@@ -80,6 +86,23 @@ pub trait Real:
     fn le(self, other: Self) -> Self::Mask;
     /// `if mask { on_true } else { on_false }`, lane by lane; both arms are always evaluated.
     fn select(mask: Self::Mask, on_true: Self, on_false: Self) -> Self;
+    /// The values of every channel of `table` at `coords` (one coordinate per axis, in the
+    /// axes' units): a texture fetch, with the semantics of
+    /// [`crate::lut::Table::lookup_into`] (multilinear interpolation between the samples,
+    /// weights from [`crate::lut::axis_cell`], clamp to the edge, a NaN coordinate read as
+    /// the axis minimum).
+    ///
+    /// - `f32`: exactly `lookup_into`'s bits ([`SharedTable::lookup_f32`]).
+    /// - `f64`: the same interpolation in `f64` from the stored `f32` samples
+    ///   ([`SharedTable::lookup_f64`]), so it differs from `f32` by rounding only.
+    /// - SIMD lanes: the `f32` lookup lane by lane (a gather), bit for bit the scalar `f32`.
+    /// - [`Traced`]: one fetch node per channel, recording the table (kept by the graph,
+    ///   deduplicated by pointer), the coordinates and the channel; [`Graph::eval_f32`]
+    ///   evaluates it with `lookup_into` and [`Graph::to_wgsl`] prints a `textureSampleLevel`.
+    fn sample_table<const D: usize, const C: usize>(
+        table: &SharedTable<D, C>,
+        coords: [Self; D],
+    ) -> [Self; C];
 
     /// `self > other`.
     fn gt(self, other: Self) -> Self::Mask {
@@ -100,7 +123,7 @@ pub trait Real:
 }
 
 macro_rules! impl_real_for_float {
-    ($t:ty, $double:expr) => {
+    ($t:ty, $double:expr, $lookup:ident) => {
         impl Real for $t {
             type Mask = bool;
             const DOUBLE: bool = $double;
@@ -176,12 +199,19 @@ macro_rules! impl_real_for_float {
                     on_false
                 }
             }
+            #[inline(always)]
+            fn sample_table<const D: usize, const C: usize>(
+                table: &SharedTable<D, C>,
+                coords: [Self; D],
+            ) -> [Self; C] {
+                table.$lookup(coords)
+            }
         }
     };
 }
 
-impl_real_for_float!(f64, true);
-impl_real_for_float!(f32, false);
+impl_real_for_float!(f64, true, lookup_f64);
+impl_real_for_float!(f32, false, lookup_f32);
 
 /// pi as a constant of the working precision.
 #[inline(always)]

@@ -9,6 +9,7 @@
 //! otherwise. [`BatchReal`] names the faster one for the current target.
 
 use super::Real;
+use crate::lut::SharedTable;
 use wide::{f32x16, f32x8, i32x16, i32x8};
 
 /// The lane type batch evaluation uses by default: [`f32x16`] when the crate is compiled with
@@ -100,7 +101,7 @@ macro_rules! lean_atan2 {
 }
 
 macro_rules! impl_real_for_lanes {
-    ($t:ident, $i:ident) => {
+    ($t:ident, $i:ident, $lanes:expr) => {
         impl Real for $t {
             /// A lane mask: all bits set where the comparison holds.
             type Mask = $t;
@@ -176,12 +177,27 @@ macro_rules! impl_real_for_lanes {
             fn select(mask: Self, on_true: Self, on_false: Self) -> Self {
                 mask.select(on_true, on_false)
             }
+            /// The scalar `f32` lookup lane by lane (a gather): bit for bit the scalar result.
+            fn sample_table<const D: usize, const C: usize>(
+                table: &SharedTable<D, C>,
+                coords: [Self; D],
+            ) -> [Self; C] {
+                let lanes = coords.map(|c| c.to_array());
+                let mut out = [[0.0f32; $lanes]; C];
+                for k in 0..$lanes {
+                    let values = table.lookup_f32(core::array::from_fn(|d| lanes[d][k]));
+                    for (channel, v) in out.iter_mut().zip(values) {
+                        channel[k] = v;
+                    }
+                }
+                out.map($t::from)
+            }
         }
     };
 }
 
-impl_real_for_lanes!(f32x8, i32x8);
-impl_real_for_lanes!(f32x16, i32x16);
+impl_real_for_lanes!(f32x8, i32x8, 8);
+impl_real_for_lanes!(f32x16, i32x16, 16);
 
 #[cfg(test)]
 mod tests {

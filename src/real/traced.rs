@@ -13,15 +13,30 @@
 //! Traced values have single-precision semantics (`Real::DOUBLE` is false) and constants
 //! are rounded to `f32` when recorded.
 //!
+//! Table fetches ([`Real::sample_table`]) record one [`Node::Fetch`] per channel; the graph
+//! keeps the tables it reads ([`Graph::tables`], one entry per table, identified by the
+//! address of its shared pointer), counts the fetches ([`Graph::count_fetches`]), evaluates
+//! them with [`Table::lookup_into`] and prints each table as a texture binding read with
+//! `textureSampleLevel` ([`Graph::to_wgsl`]).
+//!
 //! A trace that panics inside its closure leaves nothing behind: the thread can trace again.
 //! Using a [`Traced`] value outside the trace that made it (after it ended, or inside another
 //! one) panics with a message saying so, rather than recording a wrong graph.
 
 use super::Real;
+use crate::lut::{SharedTable, Table, MAX_AXES, MAX_CHANNELS};
 use core::cell::RefCell;
 use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Sub, SubAssign};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
+use std::sync::Arc;
+
+/// The coordinate slot of a [`Node::Fetch`] beyond the table's axes.
+pub const NO_COORDINATE: u32 = u32::MAX;
+
+/// Channels per texture in shader code (RGBA): a table of more channels prints as several
+/// textures, channel `c` in texture `c / 4`, component `c % 4`.
+pub const TEXTURE_CHANNELS: usize = 4;
 
 /// A unary floating-point operation of the graph.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -86,6 +101,18 @@ pub enum Node {
     Not(u32),
     /// `if c { t } else { f }` with c boolean: (c, t, f).
     Select(u32, u32, u32),
+    /// One channel of a table fetch ([`Real::sample_table`]): multilinear interpolation of
+    /// table `table` of [`Graph::tables`] at the coordinates `coords`, as
+    /// [`Table::lookup_into`] computes it.
+    Fetch {
+        /// The index of the table in [`Graph::tables`].
+        table: u32,
+        /// The nodes of the coordinates, one per axis of the table, then
+        /// [`NO_COORDINATE`].
+        coords: [u32; MAX_AXES],
+        /// The channel read.
+        channel: u32,
+    },
 }
 
 /// The shader type of one argument (or struct field) of a traced function.
@@ -222,6 +249,7 @@ pub struct Graph {
     nodes: Vec<Node>,
     signature: Signature,
     outputs: Vec<u32>,
+    tables: Vec<Arc<Table>>,
 }
 
 struct Recorder {
@@ -229,6 +257,29 @@ struct Recorder {
     trace: u32,
     nodes: Vec<Node>,
     index: HashMap<Node, u32>,
+    /// The tables fetched from, each once (by pointer).
+    tables: Vec<Arc<Table>>,
+}
+
+/// The index of `table` among the tables of the running trace, added if new, and the trace.
+///
+/// # Panics
+/// If no trace is running.
+fn register_table(table: &Arc<Table>) -> (u32, u32) {
+    RECORDER.with(|r| {
+        let mut guard = r.borrow_mut();
+        let rec = guard
+            .as_mut()
+            .expect("a table was fetched with Traced coordinates outside hairmath::real::trace");
+        let id = match rec.tables.iter().position(|t| Arc::ptr_eq(t, table)) {
+            Some(id) => id,
+            None => {
+                rec.tables.push(Arc::clone(table));
+                rec.tables.len() - 1
+            }
+        };
+        (id as u32, rec.trace)
+    })
 }
 
 thread_local! {
@@ -320,6 +371,7 @@ pub fn trace_with(signature: Signature, f: impl FnOnce(&[Traced]) -> Vec<Traced>
             trace,
             nodes: Vec::new(),
             index: HashMap::new(),
+            tables: Vec::new(),
         });
     });
     let session = Session;
@@ -344,6 +396,7 @@ pub fn trace_with(signature: Signature, f: impl FnOnce(&[Traced]) -> Vec<Traced>
         nodes: rec.nodes,
         signature,
         outputs: outputs.iter().map(|t| t.node).collect(),
+        tables: rec.tables,
     }
 }
 
@@ -367,6 +420,13 @@ impl Graph {
     /// Number of outputs of the traced function.
     pub fn output_count(&self) -> usize {
         self.outputs.len()
+    }
+
+    /// The tables the graph fetches from, in the order they were first fetched; a
+    /// [`Node::Fetch`] names one by its index here. Each table appears once however many
+    /// [`SharedTable`]s wrapped its `Arc`.
+    pub fn tables(&self) -> &[Arc<Table>] {
+        &self.tables
     }
 
     /// Marks the nodes the outputs depend on.
@@ -417,8 +477,43 @@ impl Graph {
             .count()
     }
 
+    /// How many distinct table fetches the outputs depend on: live [`Node::Fetch`] nodes with
+    /// different (table, coordinates); the channels of one fetch count once.
+    pub fn count_fetches(&self) -> usize {
+        self.live_fetches(|table, _| (table, 0))
+    }
+
+    /// How many texture samples the WGSL of [`Graph::to_wgsl`] performs: distinct live
+    /// fetches per texture, where a table of more than [`TEXTURE_CHANNELS`] channels is
+    /// several textures. Equal to [`Graph::count_fetches`] when every table has at most four
+    /// channels.
+    pub fn count_texture_samples(&self) -> usize {
+        self.live_fetches(|table, channel| (table, channel / TEXTURE_CHANNELS as u32))
+    }
+
+    /// The number of distinct (key, coordinates) of the live fetches.
+    fn live_fetches(&self, key: impl Fn(u32, u32) -> (u32, u32)) -> usize {
+        let live = self.live();
+        let mut seen = HashSet::new();
+        for (node, &l) in self.nodes.iter().zip(&live) {
+            if let (
+                true,
+                Node::Fetch {
+                    table,
+                    coords,
+                    channel,
+                },
+            ) = (l, *node)
+            {
+                seen.insert((key(table, channel), coords));
+            }
+        }
+        seen.len()
+    }
+
     /// Interprets the graph in `f32`, applying to each node the same `f32` operation the
-    /// `f32` instantiation of the generic code applies, so the result is bit-identical to it.
+    /// `f32` instantiation of the generic code applies, so the result is bit-identical to it
+    /// (a table fetch calls [`Table::lookup_into`], as the `f32` [`Real::sample_table`] does).
     ///
     /// # Panics
     /// If `inputs.len()` differs from [`Graph::input_count`].
@@ -444,9 +539,35 @@ impl Graph {
                 Node::Or(a, c) => truth[i] = b(a) | b(c),
                 Node::Not(a) => truth[i] = !b(a),
                 Node::Select(m, t, f) => value[i] = <f32 as Real>::select(b(m), v(t), v(f)),
+                Node::Fetch {
+                    table,
+                    coords,
+                    channel,
+                } => {
+                    value[i] = self.fetch_f32(
+                        table,
+                        coords.map(|k| value.get(k as usize).copied()),
+                        channel,
+                    )
+                }
             }
         }
         self.outputs.iter().map(|&o| value[o as usize]).collect()
+    }
+
+    /// Channel `channel` of table `table` at the coordinates `coords` (`None` beyond the
+    /// table's axes).
+    fn fetch_f32(&self, table: u32, coords: [Option<f32>; MAX_AXES], channel: u32) -> f32 {
+        let t = &self.tables[table as usize];
+        let (dims, nc) = (t.axes().len(), t.channels().len());
+        let mut x = [0.0f32; MAX_AXES];
+        for (slot, c) in x.iter_mut().zip(coords) {
+            *slot = c.unwrap_or(0.0);
+        }
+        let mut out = [0.0f32; MAX_CHANNELS];
+        t.lookup_into(&x[..dims], &mut out[..nc])
+            .unwrap_or_else(|_| unreachable!("a fetch has one coordinate per axis"));
+        out[channel as usize]
     }
 
     /// Prints the graph as WGSL: the declarations of the structs its arguments use, then
@@ -455,10 +576,22 @@ impl Graph {
     /// `array<f32, N>` for several. Only nodes the outputs depend on are emitted, one `let` per
     /// node, constants inline; inputs are read from the arguments by name (`wi.x`,
     /// `uniforms.eta`).
+    ///
+    /// A graph with table fetches starts with one texture binding per table (per group of
+    /// [`TEXTURE_CHANNELS`] channels for wider tables), `@group(0) @binding(k)` in the order of
+    /// [`Graph::tables`], each with a comment giving its size, axes and channels; then a
+    /// `sampler` binding `lut_sampler` (bind a linear-filtering, clamp-to-edge sampler) and the
+    /// helper `lut_coordinate`, the texel-centre transform `s = (u (n - 1) + 0.5) / n` of
+    /// `u = clamp((x - min) / (max - min), 0, 1)`. A 1D table is a texture of height 1, a 3D
+    /// table a `texture_3d`. Each fetch is one `textureSampleLevel(..., 0.0)` per texture,
+    /// its channels read as components. (Hardware filtering computes its weights in low
+    /// precision: the shader agrees with [`Graph::eval_f32`] to the filtering's precision, not
+    /// bit for bit.)
     pub fn to_wgsl(&self, name: &str) -> String {
         let live = self.live();
         let paths = self.signature.input_paths();
         let mut out = String::new();
+        self.texture_declarations(&mut out);
         let mut seen = Vec::new();
         for p in &self.signature.parameters {
             p.ty.struct_declarations(&mut seen, &mut out);
@@ -475,8 +608,26 @@ impl Graph {
             (ResultType::Scalars, n) => format!("array<f32, {n}>"),
         };
         let _ = writeln!(out, "fn {name}({}) -> {ret} {{", params.join(", "));
+        // The texture sample of each (table, coordinates, texture) already printed.
+        let mut samples: HashMap<(u32, [u32; MAX_AXES], u32), usize> = HashMap::new();
         for (i, node) in self.nodes.iter().enumerate() {
             if !live[i] || matches!(node, Node::Input(_) | Node::Const(_)) {
+                continue;
+            }
+            if let Node::Fetch {
+                table,
+                coords,
+                channel,
+            } = *node
+            {
+                let texture = channel / TEXTURE_CHANNELS as u32;
+                let sample = *samples.entry((table, coords, texture)).or_insert_with(|| {
+                    let call = self.texture_sample(table, texture, coords, &paths);
+                    let _ = writeln!(out, "    let s{i} = {call};");
+                    i
+                });
+                let component = ["x", "y", "z", "w"][channel as usize % TEXTURE_CHANNELS];
+                let _ = writeln!(out, "    let t{i} = s{sample}.{component};");
                 continue;
             }
             let _ = writeln!(out, "    let t{i} = {};", self.expression(node, &paths));
@@ -493,6 +644,114 @@ impl Graph {
         }
         out.push_str("}\n");
         out
+    }
+
+    /// The shader name of texture `texture` of table `table`: `lut{table}_{kind}`, with
+    /// `_{texture}` appended for a table of more than four channels.
+    fn texture_name(&self, table: u32, texture: u32) -> String {
+        let t = &self.tables[table as usize];
+        let kind: String = t
+            .meta()
+            .kind
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() {
+                    c.to_ascii_lowercase()
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        let mut name = format!("lut{table}");
+        if !kind.is_empty() {
+            name = format!("{name}_{kind}");
+        }
+        if t.channels().len() > TEXTURE_CHANNELS {
+            name = format!("{name}_{texture}");
+        }
+        name
+    }
+
+    /// The bindings of the tables' textures and of the sampler, and `lut_coordinate`.
+    fn texture_declarations(&self, out: &mut String) {
+        if self.tables.is_empty() {
+            return;
+        }
+        let mut binding = 0;
+        for (k, t) in self.tables.iter().enumerate() {
+            let sizes: Vec<String> = t.axes().iter().map(|a| a.size().to_string()).collect();
+            let axes: Vec<String> = t
+                .axes()
+                .iter()
+                .zip(["x", "y", "z"])
+                .map(|(a, c)| format!("{} in [{}, {}] along {c}", a.name(), a.min(), a.max()))
+                .collect();
+            let ty = if t.axes().len() == 3 {
+                "texture_3d<f32>"
+            } else {
+                "texture_2d<f32>"
+            };
+            let channels = t.channels();
+            for (texture, group) in channels.chunks(TEXTURE_CHANNELS).enumerate() {
+                let name = self.texture_name(k as u32, texture as u32);
+                let _ = writeln!(
+                    out,
+                    "// {name}: {} texels ({}); {} = {}",
+                    sizes.join(" x "),
+                    axes.join(", "),
+                    ["x", "y", "z", "w"][..group.len()].join(", "),
+                    group.join(", ")
+                );
+                let _ = writeln!(out, "@group(0) @binding({binding}) var {name}: {ty};");
+                binding += 1;
+            }
+        }
+        let _ = writeln!(
+            out,
+            "// Bind a sampler with linear filtering and clamp-to-edge addressing.\n\
+             @group(0) @binding({binding}) var lut_sampler: sampler;\n\n\
+             // The texel-centre texture coordinate of x on an axis of n samples from lo to hi\n\
+             // (the first and last samples sit at lo and hi).\n\
+             fn lut_coordinate(x: f32, lo: f32, hi: f32, n: f32) -> f32 {{\n    \
+             let u = clamp((x - lo) / (hi - lo), 0.0, 1.0);\n    \
+             return (u * (n - 1.0) + 0.5) / n;\n\
+             }}\n"
+        );
+    }
+
+    /// `textureSampleLevel(...)` of texture `texture` of table `table` at the coordinate
+    /// nodes `coords`.
+    fn texture_sample(
+        &self,
+        table: u32,
+        texture: u32,
+        coords: [u32; MAX_AXES],
+        paths: &[String],
+    ) -> String {
+        let t = &self.tables[table as usize];
+        let mut uv: Vec<String> = t
+            .axes()
+            .iter()
+            .zip(coords)
+            .map(|(a, c)| {
+                format!(
+                    "lut_coordinate({}, {}, {}, {})",
+                    self.operand(c, paths),
+                    wgsl_literal(a.min() as f32),
+                    wgsl_literal(a.max() as f32),
+                    wgsl_literal(a.size() as f32)
+                )
+            })
+            .collect();
+        if uv.len() == 1 {
+            uv.push(wgsl_literal(0.5));
+        }
+        format!(
+            "textureSampleLevel({}, lut_sampler, vec{}<f32>({}), 0.0)",
+            self.texture_name(table, texture),
+            uv.len(),
+            uv.join(", ")
+        )
     }
 
     fn operand(&self, id: u32, paths: &[String]) -> String {
@@ -519,6 +778,7 @@ impl Graph {
             Node::Or(a, b) => format!("{} | {}", o(a), o(b)),
             Node::Not(a) => format!("!{}", o(a)),
             Node::Select(m, t, f) => format!("select({}, {}, {})", o(f), o(t), o(m)),
+            Node::Fetch { .. } => unreachable!("printed as texture samples"),
         }
     }
 }
@@ -533,6 +793,7 @@ fn operands(node: &Node) -> Vec<u32> {
         | Node::And(a, b)
         | Node::Or(a, b) => vec![a, b],
         Node::Select(m, t, f) => vec![m, t, f],
+        Node::Fetch { coords, .. } => coords.into_iter().filter(|&c| c != NO_COORDINATE).collect(),
     }
 }
 
@@ -737,6 +998,25 @@ impl Real for Traced {
             Node::Select(mask.node, on_true.node, on_false.node),
             &[mask.trace, on_true.trace, on_false.trace],
         ))
+    }
+    fn sample_table<const D: usize, const C: usize>(
+        table: &SharedTable<D, C>,
+        coords: [Self; D],
+    ) -> [Self; C] {
+        let (id, trace) = register_table(table.arc());
+        let mut nodes = [NO_COORDINATE; MAX_AXES];
+        let mut traces = [trace; MAX_AXES];
+        for (d, x) in coords.iter().enumerate() {
+            (nodes[d], traces[d]) = (x.node, x.trace);
+        }
+        core::array::from_fn(|channel| {
+            let node = Node::Fetch {
+                table: id,
+                coords: nodes,
+                channel: channel as u32,
+            };
+            Traced::from_record(record(node, &traces))
+        })
     }
 }
 
