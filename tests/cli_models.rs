@@ -101,7 +101,14 @@ fn models_json_has_the_documented_keys_and_the_library_values() {
             assert_eq!(inputs.len(), entry.inputs.len(), "{}: {inputs:?}", r.model);
         }
         let ops = row["ops"].as_object().unwrap();
-        for k in ["add_mul", "div", "sqrt", "transcendental", "select"] {
+        for k in [
+            "add_mul",
+            "div",
+            "sqrt",
+            "transcendental",
+            "select",
+            "fetch",
+        ] {
             assert_eq!(
                 ops[k].as_u64().unwrap(),
                 match k {
@@ -109,7 +116,8 @@ fn models_json_has_the_documented_keys_and_the_library_values() {
                     "div" => r.cost.ops.div,
                     "sqrt" => r.cost.ops.sqrt,
                     "transcendental" => r.cost.ops.transcendental,
-                    _ => r.cost.ops.select,
+                    "select" => r.cost.ops.select,
+                    _ => r.cost.ops.fetch,
                 } as u64
             );
         }

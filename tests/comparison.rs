@@ -226,6 +226,7 @@ fn operation_counts_count_what_the_outputs_use() {
             sqrt: 1,
             transcendental: 1,
             select: 1,
+            fetch: 0,
         }
     );
 }

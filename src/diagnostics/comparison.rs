@@ -8,7 +8,8 @@
 //!   ([`ModelError::half`]) comes with every figure and shows how far it has converged.
 //! - **Energy error** ([`EnergyReference::errors`]): the directional albedo of the model
 //!   against the reference's at fixed viewing inclinations.
-//! - **Operation counts** ([`OpCounts::of`]): what a traced evaluation computes.
+//! - **Operation counts** ([`OpCounts::of`]): what a traced evaluation computes, table
+//!   fetches included.
 
 use super::furnace::{albedo, viewing_direction};
 use crate::bcsdf::{Bcsdf, Query};
@@ -243,13 +244,19 @@ pub struct OpCounts {
     pub transcendental: usize,
     /// min, max, abs, floor, comparisons and selects.
     pub select: usize,
+    /// Texture samples ([`Graph::count_texture_samples`]: distinct fetches per texture of at
+    /// most four channels).
+    pub fetch: usize,
 }
 
 impl OpCounts {
     /// The counts of the graph's live nodes ([`Graph::live_nodes`]: what the outputs depend
     /// on, each computed value once).
     pub fn of(graph: &Graph) -> Self {
-        let mut counts = OpCounts::default();
+        let mut counts = OpCounts {
+            fetch: graph.count_texture_samples(),
+            ..OpCounts::default()
+        };
         for node in graph.live_nodes() {
             match node {
                 Node::Unary(Unary::Neg, _) => counts.add_mul += 1,
@@ -265,7 +272,12 @@ impl OpCounts {
                 | Node::Less(..)
                 | Node::LessEqual(..)
                 | Node::Select(..) => counts.select += 1,
-                Node::Input(_) | Node::Const(_) | Node::And(..) | Node::Or(..) | Node::Not(_) => {}
+                Node::Input(_)
+                | Node::Const(_)
+                | Node::And(..)
+                | Node::Or(..)
+                | Node::Not(_)
+                | Node::Fetch { .. } => {}
             }
         }
         counts

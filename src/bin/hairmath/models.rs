@@ -41,7 +41,7 @@ pub struct ModelsArgs {
     /// - `ns_per_eval_f32`, `ns_per_eval_batch`: wall-clock nanoseconds per evaluation (they
     ///   vary from run to run; `cargo bench --bench models` has criterion's figures).
     /// - `ops`: the traced evaluation's counts `add_mul`, `div`, `sqrt`, `transcendental`,
-    ///   `select`.
+    ///   `select`, `fetch` (texture samples).
     #[arg(long, verbatim_doc_comment)]
     json: bool,
 }
@@ -124,6 +124,7 @@ fn ops_json(o: &OpCounts) -> Value {
         "sqrt": o.sqrt,
         "transcendental": o.transcendental,
         "select": o.select,
+        "fetch": o.fetch,
     })
 }
 
@@ -137,7 +138,7 @@ pub(crate) fn markdown(
         "Error E against Chiang et al. 2016's far field ({} nodes in h) on {} direction pairs \
          (in brackets: on the first half); fits on {} pairs. Energy error: relative albedo \
          error at theta_o = 0, 45, 80 degrees (mapped inputs). ns: wall clock, f32 scalar / \
-         SIMD batch. Ops: add+mul, div, sqrt, transcendental, select.\n",
+         SIMD batch. Ops: add+mul, div, sqrt, transcendental, select, texture fetch.\n",
         settings.reference_nodes, settings.pairs, settings.fit_pairs
     )?;
     writeln!(
@@ -155,7 +156,7 @@ pub(crate) fn markdown(
         let o = &r.cost.ops;
         writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {:.0} / {:.1} | {} {} {} {} {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {:.0} / {:.1} | {} {} {} {} {} {} |",
             r.model,
             r.hair.colour,
             r.hair.beta_m,
@@ -170,7 +171,8 @@ pub(crate) fn markdown(
             o.div,
             o.sqrt,
             o.transcendental,
-            o.select
+            o.select,
+            o.fetch
         )?;
     }
     Ok(())
