@@ -31,7 +31,9 @@ mod constants;
 mod approximation;
 mod frostbite;
 mod gerard;
+mod kajiya_kay;
 mod karis;
+mod scheuermann;
 
 pub use approximation::Approximation;
 pub use constants::*;
@@ -40,7 +42,14 @@ pub use gerard::{
     gerard_attenuation, gerard_eq8_trt_corrected, gerard_eq8_trt_printed, gerard_hg_g,
     hg_g_normalised, GERARD_K_TRT, GERARD_K_TT, HG_G_BETA_DOMAIN,
 };
+pub use kajiya_kay::{
+    KajiyaKay, KajiyaKayParams, KajiyaKayUniforms, TressFx, TressFxCone, TressFxParams,
+    TressFxUniforms, KAJIYA_KAY_LOBES, TRESSFX_LOBES,
+};
 pub use karis::{
     d_karis, h_tt_karis, inverse_eta_prime_karis, scaled_eta_prime_karis, EtaPrimeCoefficients,
     ExpCosCoefficients, HTtCoefficients,
+};
+pub use scheuermann::{
+    Scheuermann, ScheuermannParams, ScheuermannUniforms, StrandLobe, SCHEUERMANN_LOBES,
 };
