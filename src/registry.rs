@@ -98,6 +98,8 @@ pub const MODELS: &[ModelEntry] = &[
     ModelEntry::of::<ChiangHair<f64>>(),
     ModelEntry::of::<FarField>(),
     ModelEntry::of::<Marschner2003>(),
+    ModelEntry::approximation::<crate::models::NguyenDonnelly<f64>>(),
+    ModelEntry::approximation::<crate::models::Gerard<f64>>(),
 ];
 
 /// The registered model called `name`.
