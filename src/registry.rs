@@ -116,6 +116,8 @@ pub const MODELS: &[ModelEntry] = &[
     ModelEntry::approximation::<crate::models::KajiyaKay<f64>>(),
     ModelEntry::approximation::<crate::models::TressFx<f64>>(),
     ModelEntry::approximation::<crate::models::Scheuermann<f64>>(),
+    ModelEntry::approximation::<crate::models::NguyenDonnelly<f64>>(),
+    ModelEntry::approximation::<crate::models::Gerard<f64>>(),
 ];
 
 /// The registered model called `name`.

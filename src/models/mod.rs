@@ -53,3 +53,12 @@ pub use karis::{
 pub use scheuermann::{
     Scheuermann, ScheuermannParams, ScheuermannUniforms, StrandLobe, SCHEUERMANN_LOBES,
 };
+
+// The table-based models (Nguyen-Donnelly, Gerard's direct lighting).
+mod gerard_direct;
+mod nguyen_donnelly;
+pub use gerard_direct::{Gerard, GerardLobe, GerardUniforms, GERARD_N_SIZES, GERARD_REFIT_ENTRY};
+pub use nguyen_donnelly::{
+    absorption_as_colour, marschner_inputs_of, NguyenDonnelly, NguyenDonnellyUniforms,
+    NGUYEN_DONNELLY_M_SIZES, NGUYEN_DONNELLY_N_SIZES,
+};

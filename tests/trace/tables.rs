@@ -1,10 +1,18 @@
 //! Table fetches in generic code ([`Real::sample_table`], [`SharedTable::sample`]): traced to
 //! `textureSampleLevel` (naga validates the WGSL) and interpreted bit for bit like the `f32`
 //! lookup; `f64` against `f32` within rounding, SIMD lanes against the scalar lookup,
-//! clamp-to-edge, 1D/2D/3D tables, the fetch count.
+//! clamp-to-edge, 1D/2D/3D tables, the fetch count. Then the models that read tables
+//! (Nguyen-Donnelly, Gerard): traced through the model contract, bit for bit, fetches counted.
 
 use super::*;
+use hairmath::absorption::Absorption;
+use hairmath::azimuthal::CausticParams;
+use hairmath::bcsdf::Marschner2003;
 use hairmath::lut::{Axis, SharedTable, Table, TableMeta};
+use hairmath::models::{
+    Gerard, GerardLobe, NguyenDonnelly, GERARD_ABSORPTION_K_TRT, GERARD_ABSORPTION_K_TT,
+};
+use hairmath::params::{LobeShift, LobeWidth, MarschnerLobes, RefractiveIndex};
 use hairmath::real::{Node, NO_COORDINATE};
 use std::sync::Arc;
 use wide::{f32x16, f32x8};
@@ -91,7 +99,93 @@ fn coordinate_args<const D: usize, const C: usize>(t: &SharedTable<D, C>) -> Vec
         .collect()
 }
 
+/// Marschner's hair with brown absorption and the caustic treatment.
+fn marschner_hair(alpha_r_deg: f64, beta_r_deg: f64, sigma_a: [f64; 3]) -> Marschner2003 {
+    Marschner2003 {
+        lobes: MarschnerLobes {
+            alpha_r: LobeShift::new(alpha_r_deg.to_radians()).unwrap(),
+            beta_r: LobeWidth::new(beta_r_deg.to_radians()).unwrap(),
+        },
+        eta: RefractiveIndex::new(1.55).unwrap(),
+        sigma_a: Absorption::new(sigma_a).unwrap(),
+        caustic: Some(CausticParams::default()),
+    }
+}
+
+/// Gerard's model in its four variants (lobe x exponents) for a few hairs: their uniforms are
+/// the rows' first values (one table for all: it depends on eta and the caustics only).
+fn gerard_variants() -> Vec<Gerard<f64>> {
+    let mut out = Vec::new();
+    for (a, b, s) in [
+        (-5.0, 7.5, [0.545, 0.906, 1.781]),
+        (10.0, 1.0, [0.0; 3]),
+        (-22.5, 45.0, [10.0, 0.0, 3.0]),
+    ] {
+        for lobe in [GerardLobe::Printed, GerardLobe::Normalised] {
+            for k in [
+                [4.0, 5.5],
+                [GERARD_ABSORPTION_K_TT[3], GERARD_ABSORPTION_K_TRT[3]],
+            ] {
+                out.push(Gerard::new(&marschner_hair(a, b, s), lobe, k[0], k[1]).unwrap());
+            }
+        }
+    }
+    out
+}
+
 traced_tests! {
+    models_nguyen_donnelly [
+        "NguyenDonnelly::eval", "NguyenDonnelly::eval_lobes", "NguyenDonnelly::lobe_names",
+        "NguyenDonnelly::with_uniforms"
+    ] {
+        let model = NguyenDonnelly::new(marschner_hair(-5.0, 7.5, [0.545, 0.906, 1.781]));
+        // Through the library's shader entry point: (uniforms, wi, wo) -> vec3.
+        let graph = trace_eval(&model);
+        // The M texture and the N textures (7 channels: two textures), one fetch each.
+        assert_eq!((graph.count_fetches(), graph.count_texture_samples()), (2, 3));
+        assert_eq!(graph.tables().len(), 2);
+        let wgsl = graph.to_wgsl("nguyen_donnelly");
+        for text in [
+            "struct NguyenDonnellyUniforms {",
+            "var lut0_nguyen_m: texture_2d<f32>;",
+            "var lut1_nguyen_n_0: texture_2d<f32>;",
+            "var lut1_nguyen_n_1: texture_2d<f32>;",
+            "uniforms.min_cos2_theta_d",
+        ] {
+            assert!(wgsl.contains(text), "missing {text:?} in\n{wgsl}");
+        }
+        let inputs = rows(|g| [vec![g.pick(&arg(1e-12, 1e-3, &[1e-12]))], g.pair()].concat());
+        check("NguyenDonnelly::eval", &inputs, &graph, |row| {
+            let m = model.with_uniforms::<f32>(UniformBlock::from_values(&row[..1]));
+            m.eval(&query_of(&row[1..])).to_vec()
+        });
+        model_case!("NguyenDonnelly::eval_lobes", model, query_parameters(false), ResultType::Scalars, inputs, |m, x| {
+            [m.eval_lobes(&query_of(x)).concat(), consts(&[m.lobe_names().len() as f64])].concat()
+        });
+    }
+    models_gerard ["Gerard::eval", "Gerard::eval_lobes", "Gerard::lobe_names", "Gerard::with_uniforms"] {
+        let variants = gerard_variants();
+        let model = variants[0].clone();
+        let graph = trace_eval(&model);
+        assert_eq!((graph.count_fetches(), graph.count_texture_samples()), (1, 1));
+        let wgsl = graph.to_wgsl("gerard");
+        for text in ["struct GerardUniforms {", "var lut0_gerard: texture_2d<f32>;", "uniforms.k_trt"] {
+            assert!(wgsl.contains(text), "missing {text:?} in\n{wgsl}");
+        }
+        let width = model.uniforms().to_values().len();
+        let inputs = rows(|g| {
+            let u = variants[g.below(variants.len())].uniforms().to_values();
+            [u, g.pair()].concat()
+        });
+        check("Gerard::eval", &inputs, &graph, |row| {
+            let m = model.with_uniforms::<f32>(UniformBlock::from_values(&row[..width]));
+            m.eval(&query_of(&row[width..])).to_vec()
+        });
+        model_case!("Gerard::eval_lobes", model, query_parameters(false), ResultType::Scalars, inputs, |m, x| {
+            [m.eval_lobes(&query_of(x)).concat(), consts(&[m.lobe_names().len() as f64])].concat()
+        });
+    }
+
     lut_shared_table_sample ["SharedTable::sample"] {
         let (t1, t2, t3) = (table_1d(), table_2d(), table_3d());
         case!("SharedTable::sample(1D)", scalars(&coordinate_args(&t1)), |x| {
