@@ -98,6 +98,8 @@ pub const MODELS: &[ModelEntry] = &[
     ModelEntry::of::<ChiangHair<f64>>(),
     ModelEntry::of::<FarField>(),
     ModelEntry::of::<Marschner2003>(),
+    ModelEntry::approximation::<crate::models::Karis<f64>>(),
+    ModelEntry::approximation::<crate::models::KarisRefit<f64>>(),
 ];
 
 /// The registered model called `name`.

@@ -32,6 +32,7 @@ mod approximation;
 mod frostbite;
 mod gerard;
 mod karis;
+mod unreal;
 
 pub use approximation::Approximation;
 pub use constants::*;
@@ -43,4 +44,9 @@ pub use gerard::{
 pub use karis::{
     d_karis, h_tt_karis, inverse_eta_prime_karis, scaled_eta_prime_karis, EtaPrimeCoefficients,
     ExpCosCoefficients, HTtCoefficients,
+};
+pub use karis::{d_karis_of_cos, h_tt_karis_of_cos};
+pub use unreal::{
+    Karis, KarisConstants, KarisHair, KarisRefit, KarisUniforms, KarisVariant, Published, Refitted,
+    UnrealRoughness, KARIS_LOBES,
 };
