@@ -71,10 +71,7 @@ impl Absorption {
     /// # Errors
     /// A colour channel outside (0, 1] (0 would need infinite absorption).
     pub fn from_color(color: Rgb, beta_n: AzimuthalRoughness) -> Result<Self, ParamError> {
-        let b = beta_n.get();
-        let denominator = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * b.powi(3)
-            + 5.574 * b.powi(4)
-            + 0.245 * b.powi(5);
+        let denominator = color_denominator(beta_n);
         let mut out = [0.0; 3];
         for (o, &c) in out.iter_mut().zip(&color) {
             let c = ParamError::check(
@@ -92,6 +89,32 @@ impl Absorption {
     pub fn rgb(self) -> Rgb {
         self.0
     }
+
+    /// The natural logarithm of [`Absorption::to_color`], `-sqrt(sigma_a) D(beta_n)` per
+    /// channel (D the polynomial of [`Absorption::from_color`]): finite for every absorption,
+    /// also where the colour itself underflows.
+    pub fn log_color(self, beta_n: AzimuthalRoughness) -> Rgb {
+        let denominator = color_denominator(beta_n);
+        self.0.map(|s| -s.sqrt() * denominator)
+    }
+
+    /// The colour whose inversion [`Absorption::from_color`] at `beta_n` gives this absorption:
+    /// Chiang et al. 2016's forward mapping (section 4.2),
+    /// `c = exp(-sqrt(sigma_a) (5.969 - 0.215 b + 2.532 b^2 - 10.73 b^3 + 5.574 b^4 +
+    /// 0.245 b^5))`, per linear RGB channel, in (0, 1]. A channel so dark that the exponential
+    /// underflows (sigma_a above about 1.6e4 at beta_n = 0.3) gives the smallest positive
+    /// `f64`, so the result is always a valid colour for [`Absorption::from_color`].
+    pub fn to_color(self, beta_n: AzimuthalRoughness) -> Rgb {
+        self.log_color(beta_n)
+            .map(|l| l.exp().max(f64::MIN_POSITIVE))
+    }
+}
+
+/// The denominator `5.969 - 0.215 b + 2.532 b^2 - 10.73 b^3 + 5.574 b^4 + 0.245 b^5` of
+/// Chiang et al. 2016's colour mapping (section 4.2), `sqrt(sigma_a) = -ln(c) / D(b)`.
+fn color_denominator(beta_n: AzimuthalRoughness) -> f64 {
+    let b = beta_n.get();
+    5.969 - 0.215 * b + 2.532 * b * b - 10.73 * b.powi(3) + 5.574 * b.powi(4) + 0.245 * b.powi(5)
 }
 
 /// How the length of the internal path is modelled.

@@ -113,6 +113,8 @@ pub const MODELS: &[ModelEntry] = &[
     ModelEntry::of::<ChiangHair<f64>>(),
     ModelEntry::of::<FarField>(),
     ModelEntry::of::<Marschner2003>(),
+    ModelEntry::approximation::<crate::models::Karis<f64>>(),
+    ModelEntry::approximation::<crate::models::KarisRefit<f64>>(),
     ModelEntry::approximation::<crate::models::KajiyaKay<f64>>(),
     ModelEntry::approximation::<crate::models::TressFx<f64>>(),
     ModelEntry::approximation::<crate::models::Scheuermann<f64>>(),

@@ -141,7 +141,13 @@ pub fn inverse_eta_prime_karis<R: Real>(cos_theta_d: R, c: EtaPrimeCoefficients)
 /// finite coefficients. Errors (RMS over phi in [0, pi], relative to the reference's peak) are
 /// documented with the coefficient sets.
 pub fn d_karis<R: Real>(phi: R, c: ExpCosCoefficients) -> R {
-    (R::c(c.a) * phi.cos() + R::c(c.b)).exp()
+    d_karis_of_cos(phi.cos(), c)
+}
+
+/// [`d_karis`] from `cos phi` in [-1, 1], as `HairBsdf.ush` evaluates it (UE computes cos phi
+/// from the projected vectors and never phi itself): `exp(a cos phi + b)` (Karis 2016).
+pub fn d_karis_of_cos<R: Real>(cos_phi: R, c: ExpCosCoefficients) -> R {
+    (R::c(c.a) * cos_phi + R::c(c.b)).exp()
 }
 
 /// Karis' TT offset `h_TT ~ (1 + a (c1 - c2 cos phi)) cos(phi/2)` (Karis 2016; `HairBsdf.ush`
@@ -153,5 +159,11 @@ pub fn d_karis<R: Real>(phi: R, c: ExpCosCoefficients) -> R {
 /// approximation is finite for every phi and a. Errors over theta_d in [0, 80 deg] and the
 /// azimuths where the root exists are documented with the coefficient sets.
 pub fn h_tt_karis<R: Real>(a: R, phi: R, c: HTtCoefficients) -> R {
-    (R::c(1.0) + a * (R::c(c.c1) - R::c(c.c2) * phi.cos())) * (R::c(0.5) * phi).cos()
+    h_tt_karis_of_cos(a, phi.cos(), (R::c(0.5) * phi).cos(), c)
+}
+
+/// [`h_tt_karis`] from `cos phi` and `cos(phi/2)` (in [-1, 1] and [0, 1]), as `HairBsdf.ush`
+/// evaluates it: `(1 + a (c1 - c2 cos phi)) cos(phi/2)` (Karis 2016).
+pub fn h_tt_karis_of_cos<R: Real>(a: R, cos_phi: R, cos_half_phi: R, c: HTtCoefficients) -> R {
+    (R::c(1.0) + a * (R::c(c.c1) - R::c(c.c2) * cos_phi)) * cos_half_phi
 }

@@ -34,6 +34,7 @@ mod gerard;
 mod kajiya_kay;
 mod karis;
 mod scheuermann;
+mod unreal;
 
 pub use approximation::Approximation;
 pub use constants::*;
@@ -58,7 +59,12 @@ pub use scheuermann::{
 mod gerard_direct;
 mod nguyen_donnelly;
 pub use gerard_direct::{Gerard, GerardLobe, GerardUniforms, GERARD_N_SIZES, GERARD_REFIT_ENTRY};
+pub use karis::{d_karis_of_cos, h_tt_karis_of_cos};
 pub use nguyen_donnelly::{
     absorption_as_colour, marschner_inputs_of, NguyenDonnelly, NguyenDonnellyUniforms,
     NGUYEN_DONNELLY_M_SIZES, NGUYEN_DONNELLY_N_SIZES,
+};
+pub use unreal::{
+    Karis, KarisConstants, KarisHair, KarisRefit, KarisUniforms, KarisVariant, Published, Refitted,
+    UnrealRoughness, KARIS_LOBES,
 };

@@ -586,6 +586,8 @@ mod classic;
 mod models;
 /// Table fetches ([`Real::sample_table`]) and the models that read tables.
 mod tables;
+/// The Unreal models (`hairmath::models::{Karis, KarisRefit}`).
+mod unreal;
 
 traced_tests! {
     real_pi ["pi"] {
@@ -1148,7 +1150,14 @@ fn scan_public_generic_functions() -> BTreeSet<String> {
 
 #[test]
 fn coverage_matches_the_source() {
-    let all: Vec<&str> = [COVERED, models::COVERED, tables::COVERED, classic::COVERED].concat();
+    let all: Vec<&str> = [
+        COVERED,
+        models::COVERED,
+        tables::COVERED,
+        classic::COVERED,
+        unreal::COVERED,
+    ]
+    .concat();
     let covered: BTreeSet<String> = all.iter().map(|s| s.to_string()).collect();
     assert_eq!(covered.len(), all.len(), "a function is listed twice");
     let public = scan_public_generic_functions();
