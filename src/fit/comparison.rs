@@ -111,7 +111,7 @@ pub fn approximation_names() -> Vec<&'static str> {
 
 impl ComparisonSettings {
     /// The grid: the four colours of [`COMPARISON_COLOURS`] by [`COMPARISON_BETA_M`]
-    /// by [`COMPARISON_BETA_N`], every approximation, 2^16 pairs (fits on 2^14), a 64-node
+    /// by [`COMPARISON_BETA_N`], every approximation, 2^18 pairs (fits on 2^12), a 64-node
     /// reference, albedos on 32 x 8 x 128 sphere nodes.
     pub fn full() -> Self {
         let mut hairs = Vec::new();
@@ -131,8 +131,8 @@ impl ComparisonSettings {
         ComparisonSettings {
             hairs,
             models: approximation_names(),
-            pairs: 1 << 16,
-            fit_pairs: 1 << 14,
+            pairs: 1 << 18,
+            fit_pairs: 1 << 12,
             reference_nodes: 64,
             albedo_sphere: [32, 8, 128],
             timing_calls: 200_000,
@@ -157,12 +157,12 @@ impl ComparisonSettings {
 
 impl ComparisonSettings {
     /// [`ComparisonSettings::brown`] on less work, for tests and `hairmath report --quick`:
-    /// 2^12 pairs (fits on 2^11), albedos on 16 x 8 x 64 sphere nodes, short timings. The
+    /// 2^12 pairs (fits on 2^10), albedos on 16 x 8 x 64 sphere nodes, short timings. The
     /// errors are then rough.
     pub fn quick() -> Self {
         ComparisonSettings {
             pairs: 1 << 12,
-            fit_pairs: 1 << 11,
+            fit_pairs: 1 << 10,
             albedo_sphere: [16, 8, 64],
             timing_calls: 20_000,
             ..Self::brown()

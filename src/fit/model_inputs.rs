@@ -4,7 +4,9 @@
 //!
 //! One mechanism for every model: the fitted inputs are flattened into a vector (a number is
 //! one coordinate, an RGB triple or an absorption given as a colour or as sigma_a three,
-//! melanin two), the simplex moves in that space, and a point whose inputs the model rejects
+//! melanin two; a colour's channels enter as their optical densities `-ln c`, which spread the
+//! dark colours of real hair, 1e-3 to 1e-12 per channel, over a scale the simplex can step
+//! on), the simplex moves in that space, and a point whose inputs the model rejects
 //! ([`crate::bcsdf::FromInputs::from_inputs`] fails) costs [`INFEASIBLE_LOSS`], so the search
 //! stays inside each input's domain without the fit knowing it.
 
@@ -41,9 +43,12 @@ fn flatten(values: &InputValues, name: &'static str) -> Result<Vec<f64>, FitErro
     };
     match values.get(name) {
         Some(InputValue::Number(v)) => Ok(vec![v]),
-        Some(InputValue::Rgb(c))
-        | Some(InputValue::Absorption(AbsorptionInput::Color(c)))
-        | Some(InputValue::Absorption(AbsorptionInput::SigmaA(c))) => Ok(c.to_vec()),
+        Some(InputValue::Rgb(c)) | Some(InputValue::Absorption(AbsorptionInput::SigmaA(c))) => {
+            Ok(c.to_vec())
+        }
+        Some(InputValue::Absorption(AbsorptionInput::Color(c))) => {
+            Ok(c.iter().map(|v| -v.ln()).collect())
+        }
         Some(InputValue::Absorption(AbsorptionInput::Melanin {
             eumelanin,
             pheomelanin,
@@ -62,9 +67,9 @@ fn unflatten(values: &mut InputValues, name: &'static str, x: &mut core::slice::
     let value = match values.get(name) {
         Some(InputValue::Number(_)) => InputValue::Number(next()),
         Some(InputValue::Rgb(_)) => InputValue::Rgb(rgb()),
-        Some(InputValue::Absorption(AbsorptionInput::Color(_))) => {
-            InputValue::Absorption(AbsorptionInput::Color(rgb()))
-        }
+        Some(InputValue::Absorption(AbsorptionInput::Color(_))) => InputValue::Absorption(
+            AbsorptionInput::Color(rgb().map(|density| (-density).exp())),
+        ),
         Some(InputValue::Absorption(AbsorptionInput::SigmaA(_))) => {
             InputValue::Absorption(AbsorptionInput::SigmaA(rgb()))
         }
@@ -117,14 +122,34 @@ pub fn input_loss(model: &ModelEntry, values: &InputValues, reference: &Referenc
     }
 }
 
+/// Most Nelder-Mead runs of one fit ([`fit_model_inputs`]).
+pub const MAX_INPUT_FIT_RUNS: usize = 40;
+
+/// A fit stops when a restarted simplex improves E by less than this fraction of E.
+pub const RESTART_IMPROVEMENT: f64 = 1.0e-6;
+
+/// The first steps of a simplex around `x`.
+fn simplex_steps(x: &[f64]) -> Vec<f64> {
+    x.iter()
+        .map(|v| if v.abs() > 0.5 { 0.1 * v } else { 0.05 })
+        .collect()
+}
+
 /// The values of `fitted` (input names of `model`) that minimise E of `model` against
-/// `reference`, starting from `start` (every input of the model; the others are kept): a
-/// Nelder-Mead simplex whose first steps are a tenth of each coordinate (0.05 for a
-/// coordinate near 0), run to [`INPUT_FIT_TOLERANCE`].
+/// `reference`, starting from `start` (every input of the model; the others are kept).
+///
+/// Nelder-Mead simplices ([`minimize`]) run to [`INPUT_FIT_TOLERANCE`], each restarted from
+/// the previous one's best point with a fresh simplex (steps of a tenth of each coordinate, or
+/// 0.05 below 0.5) until a run improves E by less than [`RESTART_IMPROVEMENT`] of itself (at
+/// most [`MAX_INPUT_FIT_RUNS`] runs): a single simplex on inputs of very different scales
+/// (weights near 0.05, exponents near 10), or with a weight pressed against its bound 0, often
+/// collapses before the minimum, which a restart detects and resumes. The returned
+/// [`Minimum::iterations`] counts every run's iterations.
 ///
 /// # Errors
 /// [`FitError::Degenerate`] for an input that cannot be fitted or a start the model rejects;
-/// [`FitError::NotConverged`] if the simplex does not converge.
+/// [`FitError::NotConverged`] if a simplex does not converge, or if the runs still improve E
+/// after [`MAX_INPUT_FIT_RUNS`].
 pub fn fit_model_inputs(
     model: &ModelEntry,
     fitted: &[&'static str],
@@ -132,19 +157,37 @@ pub fn fit_model_inputs(
     reference: &ReferenceSamples,
 ) -> Result<InputFit, FitError> {
     (model.build)(start)?;
-    let x0 = flattened_inputs(start, fitted)?;
-    let step: Vec<f64> = x0
-        .iter()
-        .map(|v| if v.abs() > 0.5 { 0.1 * v } else { 0.05 })
-        .collect();
     let loss = |x: &[f64]| input_loss(model, &inputs_at(start, fitted, x), reference);
     let what = format!("the inputs of {}", model.name);
-    let minimum = minimize(&what, loss, &x0, &step, INPUT_FIT_TOLERANCE)?;
-    let values = inputs_at(start, fitted, &minimum.params);
-    let error = reference.relative_error((model.build)(&values)?.as_ref());
-    Ok(InputFit {
-        values,
-        error,
-        minimum,
+    let mut x = flattened_inputs(start, fitted)?;
+    let mut best = loss(&x);
+    let mut iterations = 0;
+    for _ in 0..MAX_INPUT_FIT_RUNS {
+        let run = minimize(&what, loss, &x, &simplex_steps(&x), INPUT_FIT_TOLERANCE)?;
+        iterations += run.iterations;
+        let improvement = best - run.loss;
+        if run.loss < best {
+            x = run.params.clone();
+            best = run.loss;
+        }
+        if improvement < RESTART_IMPROVEMENT * best {
+            let values = inputs_at(start, fitted, &x);
+            let error = reference.relative_error((model.build)(&values)?.as_ref());
+            let minimum = Minimum {
+                params: x,
+                loss: best,
+                iterations,
+                ..run
+            };
+            return Ok(InputFit {
+                values,
+                error,
+                minimum,
+            });
+        }
+    }
+    Err(FitError::NotConverged {
+        what,
+        reason: format!("E still improved after {MAX_INPUT_FIT_RUNS} restarted simplices"),
     })
 }

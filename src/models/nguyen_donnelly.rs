@@ -39,17 +39,21 @@
 //!
 //! Against [`Marschner2003::eval`] itself (same directions, no cosine factor either side), as
 //! the relative L2 error `sqrt(sum (S - S_M)^2 / sum S_M^2)` over 20,000 direction pairs
-//! uniform on the product of two spheres: 2.7e-2 where |theta_d| <= 30 degrees, 3.1e-2 where
-//! |theta_d| <= 60, 0.14 where |theta_d| <= 80, and 0.30 over all pairs (2.4, 0.93, 0.30,
-//! 0.11 at 32, 64, 128, 256 texels a side). The last figure is dominated by the pseudocode's
-//! reading cos theta_d from the M texture: near the corner sin theta_i = -+1, sin theta_o = +-1
-//! cos theta_d = cos((asin s_o - asin s_i) / 2) has square-root singularities that no
-//! bilinear texture follows, and S grows like 1/cos^2 theta_d there (it diverges as both
-//! directions graze the fibre from opposite ends). Computing cos theta_d from the directions
-//! instead, `sqrt((1 + cos theta_i cos theta_o + sin theta_i sin theta_o) / 2)`, would give
-//! 5.2e-2 over all pairs; hairmath keeps the published shader. The all-pairs figure converges
-//! slowly in the number of pairs (0.32, 0.30, 0.38 with 5,000, 20,000 and 80,000), a heavy
-//! tail from that divergence.
+//! uniform on the product of two spheres: see `tests/models_tables.rs`, which asserts the
+//! figures of the deviation below.
+//!
+//! # Deviation from the slides: cos theta_d from the directions
+//!
+//! The slides' pseudocode reads cos theta_d from the M texture (its fourth channel, which the
+//! baked texture still holds). Near the corner sin theta_i = -+1, sin theta_o = +-1,
+//! cos theta_d = cos((asin s_o - asin s_i) / 2) has square-root singularities that no bilinear
+//! texture follows, and S grows like 1/cos^2 theta_d there: with the texture's value the
+//! relative L2 error against Marschner over all pairs is 0.30 at 128 x 128 texels, and the
+//! error against the Chiang far field on the comparison's pairs (`hairmath models`) is 23
+//! for brown hair, a figure that grows with the number of pairs (31.7 on half of them),
+//! dominated by a few pairs near that corner. hairmath computes it from the directions
+//! instead, `cos theta_d = sqrt((1 + cos theta_i cos theta_o + sin theta_i sin theta_o) / 2)`
+//! (one square root per shading point).
 //!
 //! # Cosine factors
 //!
@@ -58,7 +62,7 @@
 //! include it; hairmath's do not, `lut::NguyenN`) and the cos theta_i. The crate's S has no
 //! cosine factor, so [`Bcsdf::eval`] returns, as [`Marschner2003::eval`] does,
 //! `S = cos theta_i / max(cos^2 theta_d, min_cos2_theta_d) * sum_p M_p N_p`, with cos theta_d
-//! read from the M texture (as the pseudocode does) and cos theta_i = |wi projected on the
+//! computed from the directions (see "Deviation") and cos theta_i = |wi projected on the
 //! normal plane|.
 //!
 //! # Inputs
@@ -100,7 +104,7 @@ use crate::geometry::{local_sin_cos_theta, V3};
 use crate::lut::{bake, lookup_error, ErrorStats, LutError, NguyenM, NguyenN, SharedTable};
 use crate::models::Approximation;
 use crate::params::HairParams;
-use crate::real::Real;
+use crate::real::{safe_sqrt, Real};
 
 /// Texels of the M texture (sin theta_i x sin theta_o).
 pub const NGUYEN_DONNELLY_M_SIZES: [usize; 2] = [128, 128];
@@ -214,8 +218,11 @@ impl<R: Real> NguyenDonnelly<R> {
     /// conversion.
     fn lobes(&self, query: &Query<R>) -> [[R; 3]; 3] {
         let (sin_i, cos_i) = local_sin_cos_theta(query.wi);
-        let (sin_o, _) = local_sin_cos_theta(query.wo);
-        let [m_r, m_tt, m_trt, cos_d] = self.m.sample([sin_i, sin_o]);
+        let (sin_o, cos_o) = local_sin_cos_theta(query.wo);
+        // The M texture's fourth channel holds cos theta_d as the slides read it; it is
+        // computed from the directions instead (module docs, "Deviation").
+        let [m_r, m_tt, m_trt, _] = self.m.sample([sin_i, sin_o]);
+        let cos_d = safe_sqrt((R::c(1.0) + cos_i * cos_o + sin_i * sin_o) * R::c(0.5));
         let cos_phi = cos_relative_azimuth(query.wi, query.wo);
         let [tt_r, tt_g, tt_b, n_r, trt_r, trt_g, trt_b] = self.n.sample([cos_phi, cos_d]);
         let factor = cos_i / (cos_d * cos_d).max(self.uniforms.min_cos2_theta_d);
