@@ -106,6 +106,21 @@ pub trait Bcsdf<R: Real> {
     }
 }
 
+/// The sum per channel of `N >= 1` lobes, left to right (`lobes[0] + lobes[1] + ...`): what a
+/// model's [`Bcsdf::eval`] returns from the terms its [`Bcsdf::eval_lobes`] lists, without
+/// allocating.
+///
+/// # Panics
+/// If `N` is 0 (a model has at least one lobe).
+#[inline(always)]
+pub fn sum_lobes<R: Real, const N: usize>(lobes: &[[R; 3]; N]) -> [R; 3] {
+    core::array::from_fn(|c| {
+        lobes[1..]
+            .iter()
+            .fold(lobes[0][c], |sum, lobe| sum + lobe[c])
+    })
+}
+
 /// A model with importance sampling.
 pub trait SampledBcsdf<R: Real>: Bcsdf<R> {
     /// The solid-angle density with which [`SampledBcsdf::sample`] chooses `query.wi` given

@@ -59,8 +59,8 @@
 
 use super::nguyen_donnelly::MIN_COS2_THETA_D;
 use crate::bcsdf::{
-    Bcsdf, FromInputs, Input, InputKind, InputValue, InputValues, Marschner2003, Model, Query,
-    MARSCHNER_LOBES,
+    sum_lobes, Bcsdf, FromInputs, Input, InputKind, InputValue, InputValues, Marschner2003, Model,
+    Query, MARSCHNER_LOBES,
 };
 use crate::error::ParamError;
 use crate::geometry::local_fibre_angles;
@@ -237,8 +237,7 @@ impl<R: Real> Bcsdf<R> for Gerard<R> {
 
     /// The sum of the lobes, without allocating.
     fn eval(&self, query: &Query<R>) -> [R; 3] {
-        let [r, tt, trt] = self.lobes(query);
-        core::array::from_fn(|c| r[c] + tt[c] + trt[c])
+        sum_lobes(&self.lobes(query))
     }
 }
 

@@ -99,8 +99,8 @@ use super::approximation::Approximation;
 use crate::absorption::{PathLength, Rgb};
 use crate::azimuthal::attenuations_at_offset;
 use crate::bcsdf::{
-    longitudinal_variance, Bcsdf, FromInputs, Input, InputKind, InputValue, InputValues, Model,
-    Query,
+    longitudinal_variance, sum_lobes, Bcsdf, FromInputs, Input, InputKind, InputValue, InputValues,
+    Model, Query,
 };
 use crate::error::ParamError;
 use crate::geometry::{local_sin_cos_theta, V3};
@@ -385,8 +385,7 @@ impl<R: Real> Bcsdf<R> for KajiyaKay<R> {
     }
 
     fn eval(&self, query: &Query<R>) -> [R; 3] {
-        let [diffuse, specular] = self.terms(query);
-        core::array::from_fn(|c| diffuse[c] + specular[c])
+        sum_lobes(&self.terms(query))
     }
 }
 
@@ -580,8 +579,7 @@ impl<R: Real> Bcsdf<R> for TressFx<R> {
     }
 
     fn eval(&self, query: &Query<R>) -> [R; 3] {
-        let [diffuse, primary, secondary] = self.terms(query);
-        core::array::from_fn(|c| diffuse[c] + primary[c] + secondary[c])
+        sum_lobes(&self.terms(query))
     }
 }
 

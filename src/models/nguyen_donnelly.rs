@@ -96,8 +96,8 @@
 
 use crate::absorption::Absorption;
 use crate::bcsdf::{
-    longitudinal_variance, AbsorptionInput, Bcsdf, FromInputs, Input, InputValue, InputValues,
-    Marschner2003, Model, Query, COLOR_BETA_N, MARSCHNER_LOBES,
+    longitudinal_variance, sum_lobes, AbsorptionInput, Bcsdf, FromInputs, Input, InputValue,
+    InputValues, Marschner2003, Model, Query, COLOR_BETA_N, MARSCHNER_LOBES,
 };
 use crate::error::ParamError;
 use crate::geometry::{local_sin_cos_theta, V3};
@@ -247,8 +247,7 @@ impl<R: Real> Bcsdf<R> for NguyenDonnelly<R> {
 
     /// The sum of the lobes, without allocating.
     fn eval(&self, query: &Query<R>) -> [R; 3] {
-        let [r, tt, trt] = self.lobes(query);
-        core::array::from_fn(|c| r[c] + tt[c] + trt[c])
+        sum_lobes(&self.lobes(query))
     }
 }
 

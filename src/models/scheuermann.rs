@@ -109,8 +109,8 @@ use super::kajiya_kay::{
 };
 use crate::absorption::Rgb;
 use crate::bcsdf::{
-    longitudinal_variance, Bcsdf, FromInputs, Input, InputKind, InputValue, InputValues, Model,
-    Query,
+    longitudinal_variance, sum_lobes, Bcsdf, FromInputs, Input, InputKind, InputValue, InputValues,
+    Model, Query,
 };
 use crate::error::ParamError;
 use crate::geometry::local_sin_cos_theta;
@@ -328,8 +328,7 @@ impl<R: Real> Bcsdf<R> for Scheuermann<R> {
     }
 
     fn eval(&self, query: &Query<R>) -> [R; 3] {
-        let [diffuse, primary, secondary] = self.terms(query);
-        core::array::from_fn(|c| diffuse[c] + primary[c] + secondary[c])
+        sum_lobes(&self.terms(query))
     }
 }
 

@@ -163,7 +163,10 @@ traced_tests! {
             [m.eval_lobes(&query_of(x)).concat(), consts(&[m.lobe_names().len() as f64])].concat()
         });
     }
-    models_gerard ["Gerard::eval", "Gerard::eval_lobes", "Gerard::lobe_names", "Gerard::with_uniforms"] {
+    models_gerard [
+        "Gerard::eval", "Gerard::eval_lobes", "Gerard::lobe_names", "Gerard::with_uniforms",
+        "sum_lobes"
+    ] {
         let variants = gerard_variants();
         let model = variants[0].clone();
         let graph = trace_eval(&model);
