@@ -120,6 +120,8 @@ pub const MODELS: &[ModelEntry] = &[
     ModelEntry::approximation::<crate::models::Scheuermann<f64>>(),
     ModelEntry::approximation::<crate::models::NguyenDonnelly<f64>>(),
     ModelEntry::approximation::<crate::models::Gerard<f64>>(),
+    ModelEntry::approximation::<crate::models::Frostbite<f64>>(),
+    ModelEntry::approximation::<crate::models::FrostbiteRefit<f64>>(),
 ];
 
 /// The registered model called `name`.

@@ -68,3 +68,10 @@ pub use unreal::{
     Karis, KarisConstants, KarisHair, KarisRefit, KarisUniforms, KarisVariant, Published, Refitted,
     UnrealRoughness, KARIS_LOBES,
 };
+
+// Frostbite 2019 (Tafuri), the published and the refitted single offsets.
+mod frostbite_hair;
+pub use frostbite_hair::{
+    d_trt_frostbite, frostbite_trt_scale, frostbite_tt_table, Frostbite, FrostbiteHair,
+    FrostbiteRefit, FrostbiteUniforms, FrostbiteVariant, FROSTBITE_LOBES,
+};

@@ -195,6 +195,27 @@ impl KarisVariant for Refitted {
     const CONSTANTS: KarisConstants = KarisConstants::REFIT;
 }
 
+/// The standard deviation in `sin theta_i` of Chiang's R lobe at normal incidence (theta_o =
+/// 0), `sqrt(v coth(1/v) - v^2)` with `v` from beta_m by Chiang's eq. 7: the second moment of
+/// a von Mises-Fisher distribution of concentration `1/v` along an axis perpendicular to its
+/// mean (the module documentation derives it). The width a Gaussian in the sum of sines
+/// needs to match Chiang's lobe there; below 1/sqrt(3) for every beta_m.
+pub(crate) fn chiang_r_width_in_sines(beta_m: LongitudinalRoughness) -> f64 {
+    let v = longitudinal_variance(beta_m.get());
+    (v / (1.0 / v).tanh() - v * v).max(0.0).sqrt()
+}
+
+/// Karis 2016's azimuthal R factor `N_R = D_R A_R` as `HairShading` evaluates it:
+/// `D_R = cos(phi/2) / 4` and `A_R = F(eta, sqrt(1/2 + wi.wo / 2))`, Schlick's Fresnel
+/// ([`fresnel_schlick`]) at the cosine of half the angle between the 3D directions (the angle
+/// of incidence of the mirror reflection), from `cos_half_phi = cos(phi/2)` in [0, 1] and
+/// `v_dot_l = wi . wo`. Tafuri 2019 (slide 14) takes it unchanged.
+pub(crate) fn r_azimuthal<R: Real>(cos_half_phi: R, v_dot_l: R, eta: R) -> R {
+    let np = R::c(0.25) * cos_half_phi;
+    let fp = fresnel_schlick(saturate(R::c(0.5) + R::c(0.5) * v_dot_l).sqrt(), eta);
+    np * fp
+}
+
 /// UE's hair Roughness, validated: in (0, 1].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct UnrealRoughness(f64);
@@ -219,9 +240,8 @@ impl UnrealRoughness {
     /// clamped to [1/255, 1] (the module documentation derives it; the value never exceeds
     /// 0.76).
     pub fn from_beta_m(beta_m: LongitudinalRoughness) -> Self {
-        let v = longitudinal_variance(beta_m.get());
-        let second_moment = (v / (1.0 / v).tanh() - v * v).max(0.0);
-        UnrealRoughness(second_moment.sqrt().sqrt().clamp(MIN_ROUGHNESS, 1.0))
+        let width = chiang_r_width_in_sines(beta_m);
+        UnrealRoughness(width.sqrt().clamp(MIN_ROUGHNESS, 1.0))
     }
 
     /// The R lobe's standard deviation in the sum of sines, `B_R = clamp(r, 1/255, 1)^2`.
@@ -373,12 +393,7 @@ impl<R: Real, V: KarisVariant> KarisHair<R, V> {
         let b_scale = R::c(core::f64::consts::SQRT_2) * a.cos_half_phi;
         let width = (self.uniforms.width_r * b_scale).max(R::c(MIN_WIDTH));
         let mp = gaussian_lobe(width, a.sum_of_sines - shift);
-        let np = R::c(0.25) * a.cos_half_phi;
-        let fp = fresnel_schlick(
-            saturate(R::c(0.5) + R::c(0.5) * a.v_dot_l).sqrt(),
-            R::c(ETA),
-        );
-        mp * np * fp
+        mp * r_azimuthal(a.cos_half_phi, a.v_dot_l, R::c(ETA))
     }
 
     /// The TT lobe per channel: `Mp Np Fp Tp` at Karis' offset h_TT.

@@ -582,6 +582,8 @@ fn sh_direction_rows() -> Vec<Vec<f32>> {
 
 /// The classic real-time models: Kajiya-Kay, TressFX, Scheuermann.
 mod classic;
+/// The Frostbite models (`hairmath::models::{Frostbite, FrostbiteRefit}`).
+mod frostbite;
 /// The closed forms of the real-time models (`hairmath::models`).
 mod models;
 /// Table fetches ([`Real::sample_table`]) and the models that read tables.
@@ -1156,6 +1158,7 @@ fn coverage_matches_the_source() {
         tables::COVERED,
         classic::COVERED,
         unreal::COVERED,
+        frostbite::COVERED,
     ]
     .concat();
     let covered: BTreeSet<String> = all.iter().map(|s| s.to_string()).collect();
