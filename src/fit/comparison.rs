@@ -111,7 +111,7 @@ pub fn approximation_names() -> Vec<&'static str> {
 
 impl ComparisonSettings {
     /// The grid: the four colours of [`COMPARISON_COLOURS`] by [`COMPARISON_BETA_M`]
-    /// by [`COMPARISON_BETA_N`], every approximation, 2^18 pairs (fits on 2^12), a 64-node
+    /// by [`COMPARISON_BETA_N`], every approximation, 2^19 pairs (fits on 2^12), a 64-node
     /// reference, albedos on 32 x 8 x 128 sphere nodes.
     pub fn full() -> Self {
         let mut hairs = Vec::new();
@@ -131,7 +131,7 @@ impl ComparisonSettings {
         ComparisonSettings {
             hairs,
             models: approximation_names(),
-            pairs: 1 << 18,
+            pairs: 1 << 19,
             fit_pairs: 1 << 12,
             reference_nodes: 64,
             albedo_sphere: [32, 8, 128],
