@@ -123,6 +123,7 @@ fn report_quick_json_has_the_documented_keys_and_the_library_values() {
             "timing",
             "integrator",
             "fitted_constants",
+            "models",
         ],
     );
     assert_eq!(json["detail"], "quick");
