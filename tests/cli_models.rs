@@ -3,20 +3,12 @@
 //! summarises the same rows.
 
 use hairmath::fit::{compare_models, ComparisonSettings, ModelRow};
+mod common;
+
+use common::{hairmath, same};
 use serde_json::Value;
 use std::process::Command;
 use std::sync::OnceLock;
-
-/// Runs `hairmath` with `args` and returns its stdout (the command must succeed).
-fn hairmath(args: &[&str]) -> String {
-    let o = Command::new(env!("CARGO_BIN_EXE_hairmath"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success(), "hairmath {args:?} failed: {stderr}");
-    String::from_utf8(o.stdout).expect("UTF-8 output")
-}
 
 /// The library's rows for brown hair, computed once (without timings).
 fn library() -> &'static [ModelRow] {
@@ -28,17 +20,6 @@ fn library() -> &'static [ModelRow] {
         };
         compare_models(&settings, &|_, _| {}).unwrap()
     })
-}
-
-/// The JSON number `json` is `value` to 2 ulps (serde_json's parser may round the last bit).
-fn same(json: &Value, value: f64) {
-    let parsed = json
-        .as_f64()
-        .unwrap_or_else(|| panic!("{json} is not a number"));
-    assert!(
-        parsed == value || (parsed - value).abs() <= 4.5e-16 * value.abs(),
-        "{parsed:e} (JSON) vs {value:e} (library)"
-    );
 }
 
 #[test]

@@ -7,43 +7,16 @@ use hairmath::diagnostics::{
     INTEGRATOR_SIGMA_A, PEAK_FLOOR, REFERENCE_TOL, REFINED_TOL, REPORT_ALPHA_DEG, REPORT_BETA,
     REPORT_ETA, SHARP_BETA,
 };
-use serde_json::Value;
-use std::process::Command;
-use std::sync::OnceLock;
+mod common;
 
-/// Runs `hairmath` with `args` and returns its stdout (the command must succeed).
-fn hairmath(args: &[&str]) -> String {
-    let o = Command::new(env!("CARGO_BIN_EXE_hairmath"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success(), "hairmath {args:?} failed: {stderr}");
-    String::from_utf8(o.stdout).expect("UTF-8 output")
-}
+use common::{hairmath, num, same};
+use serde_json::Value;
+use std::sync::OnceLock;
 
 /// The library's quick report, computed once for every test.
 fn library() -> &'static Report {
     static REPORT: OnceLock<Report> = OnceLock::new();
     REPORT.get_or_init(|| report(&ReportSettings::new(ReportDetail::Quick)).unwrap())
-}
-
-/// `value` as a number.
-fn num(value: &Value) -> f64 {
-    value
-        .as_f64()
-        .unwrap_or_else(|| panic!("{value} is not a number"))
-}
-
-/// The JSON number `json` is `value`. serde_json prints the shortest representation that
-/// round-trips, but its default parser (without the `float_roundtrip` feature) may round the
-/// last bit, so equality is to 2 ulps.
-fn same(json: &Value, value: f64) {
-    let parsed = num(json);
-    assert!(
-        parsed == value || (parsed - value).abs() <= 4.5e-16 * value.abs(),
-        "{parsed:e} (JSON) vs {value:e} (library)"
-    );
 }
 
 /// The JSON list `json` is `values`, element by element as [`same`].

@@ -397,6 +397,33 @@ fn sample_parameters() -> Vec<Parameter> {
     p
 }
 
+/// Direction pairs `[wi, wo]` every model's row set starts with: along the tangent (equal,
+/// opposite, with the other direction in the normal plane), grazing from opposite ends,
+/// phi = 0 and pi in the normal plane, wi = -wo off the normal plane.
+const HARD_PAIRS: &[[f64; 6]] = &[
+    [1.0, 0.0, 0.0, -1.0, 0.0, 0.0],
+    [-1.0, 0.0, 0.0, -1.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0, 1.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0, 0.0, 0.6, 0.8],
+    [0.0, 0.6, 0.8, -1.0, 0.0, 0.0],
+    [0.999_999_9, 4.47e-4, 0.0, -0.999_999_9, 0.0, 4.47e-4],
+    [0.0, 1.0, 0.0, 0.0, 1.0, 0.0],
+    [0.0, 1.0, 0.0, 0.0, -1.0, 0.0],
+    [-0.3, 0.0, 0.953_939_2, 0.3, 0.0, -0.953_939_2],
+];
+
+/// Rows of a model's uniforms then a direction pair: each of `materials` materials
+/// (`uniforms(k)`) with each of [`HARD_PAIRS`], then random materials and pairs.
+fn material_rows(materials: usize, uniforms: impl Fn(usize) -> Vec<f64>) -> Vec<Vec<f32>> {
+    let mut first = Vec::new();
+    for k in 0..materials {
+        for p in HARD_PAIRS {
+            first.push([uniforms(k), p.to_vec()].concat());
+        }
+    }
+    listed_then(first, |g| [uniforms(g.below(materials)), g.pair()].concat())
+}
+
 /// Listed rows first (the hard cases), then rows built by `row` up to `N`, rounded to `f32`.
 fn listed_then(first: Vec<Vec<f64>>, row: impl FnMut(&mut Gen) -> Vec<f64>) -> Vec<Vec<f32>> {
     let random = rows(row);

@@ -32,32 +32,10 @@ fn unreal_model<V: KarisVariant>(k: usize) -> KarisHair<f64, V> {
     )
 }
 
-/// The direction pairs every row set starts with: along the tangent (equal, opposite, with
-/// the other direction in the normal plane), grazing from opposite ends, phi = 0 and pi in the
-/// normal plane.
-const HARD_PAIRS: &[[f64; 6]] = &[
-    [1.0, 0.0, 0.0, -1.0, 0.0, 0.0],
-    [-1.0, 0.0, 0.0, -1.0, 0.0, 0.0],
-    [1.0, 0.0, 0.0, 1.0, 0.0, 0.0],
-    [1.0, 0.0, 0.0, 0.0, 0.6, 0.8],
-    [0.0, 0.6, 0.8, -1.0, 0.0, 0.0],
-    [0.999_999_9, 4.47e-4, 0.0, -0.999_999_9, 0.0, 4.47e-4],
-    [0.0, 1.0, 0.0, 0.0, 1.0, 0.0],
-    [0.0, 1.0, 0.0, 0.0, -1.0, 0.0],
-    [-0.3, 0.0, 0.953_939_2, 0.3, 0.0, -0.953_939_2],
-];
-
 /// The uniforms of each material with each hard pair, then random materials and pairs.
 fn unreal_rows<V: KarisVariant>() -> Vec<Vec<f32>> {
-    let uniforms = |k: usize| unreal_model::<V>(k).uniforms().to_values();
-    let mut first = Vec::new();
-    for k in 0..UNREAL_MATERIALS.len() {
-        for p in HARD_PAIRS {
-            first.push([uniforms(k), p.to_vec()].concat());
-        }
-    }
-    listed_then(first, |g| {
-        [uniforms(g.below(UNREAL_MATERIALS.len())), g.pair()].concat()
+    material_rows(UNREAL_MATERIALS.len(), |k| {
+        unreal_model::<V>(k).uniforms().to_values()
     })
 }
 
