@@ -17,5 +17,7 @@ pub mod quadrature;
 pub mod real;
 pub mod registry;
 pub mod sh;
+#[cfg(feature = "shader")]
+pub mod shader;
 
 pub use error::ParamError;

@@ -1,0 +1,1091 @@
+//! Lowering the bodies of a traced graph to naga functions: the graph's functions (callees
+//! first), their calls and loops, and the top-level function.
+
+use super::builder::FnBuilder;
+use super::tables::TableHelper;
+use super::types;
+use super::view::{constant_values, Body, CallKind, CallSite, FunctionKind, Node, Shape, View};
+use super::ShaderError;
+use crate::lut::MAX_AXES;
+use crate::real::{ArgType, Binary, ResultType, Unary};
+use naga::{
+    BinaryOperator, Constant, Expression, Function, Handle, MathFunction, Module, Span, Statement,
+    Type, UnaryOperator,
+};
+use std::collections::HashMap;
+
+/// How the callee of a call returns its outputs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum ResultKind {
+    /// `f32`: one output.
+    Scalar,
+    /// `array<f32, N>`.
+    Array(u32),
+    /// `vec3<f32>`.
+    Vec3,
+}
+
+impl ResultKind {
+    /// The kind of a result of `outputs` values declared as `result`.
+    pub fn of(result: ResultType, outputs: usize) -> Self {
+        match (result, outputs) {
+            (ResultType::Vec3, _) => ResultKind::Vec3,
+            (ResultType::Scalars, 1) => ResultKind::Scalar,
+            (ResultType::Scalars, n) => ResultKind::Array(n as u32),
+        }
+    }
+
+    /// The naga type.
+    pub fn ty(self, module: &mut Module) -> Handle<Type> {
+        match self {
+            ResultKind::Scalar => types::f32(module),
+            ResultKind::Vec3 => types::vec3(module),
+            ResultKind::Array(n) => {
+                let f = types::f32(module);
+                types::array(module, f, Some(n))
+            }
+        }
+    }
+}
+
+/// Where a body's scalar parameter is read from: a value, or a component of one (a vector
+/// component or a struct field, possibly nested).
+#[derive(Clone, Debug)]
+pub(super) enum Source {
+    /// The expression itself (an `f32` argument).
+    Value(Handle<Expression>),
+    /// `base.path[0].path[1]...`; `vector` when the last step is a `vec3` component.
+    Component {
+        base: Handle<Expression>,
+        path: Vec<u32>,
+        vector: bool,
+    },
+    /// A component of a module-scope constant (read through `Expression::Constant`).
+    Constant {
+        constant: Handle<Constant>,
+        path: Vec<u32>,
+        vector: bool,
+    },
+}
+
+/// A lowered graph function.
+#[derive(Clone, Copy)]
+struct Lowered {
+    handle: Handle<Function>,
+    result: ResultKind,
+}
+
+/// The naga constant of a loop's array and how to read an element.
+#[derive(Clone, Copy)]
+pub(super) struct ArrayConstant {
+    /// The constant `array<Element, K>`.
+    pub constant: Handle<Constant>,
+    /// K.
+    pub count: u32,
+}
+
+/// What a body's nodes and call sites are used for.
+struct Liveness {
+    nodes: Vec<bool>,
+    sites: Vec<bool>,
+}
+
+fn liveness(body: &Body) -> Liveness {
+    let mut nodes = vec![false; body.nodes.len()];
+    let mut sites = vec![false; body.calls.len()];
+    for &o in &body.outputs {
+        nodes[o as usize] = true;
+    }
+    for i in (0..body.nodes.len()).rev() {
+        if !nodes[i] {
+            continue;
+        }
+        if let Node::Result { site, .. } = body.nodes[i] {
+            if !sites[site as usize] {
+                sites[site as usize] = true;
+                for &a in &body.calls[site as usize].args {
+                    nodes[a as usize] = true;
+                }
+            }
+        }
+        for k in operands(&body.nodes[i]) {
+            nodes[k as usize] = true;
+        }
+    }
+    Liveness { nodes, sites }
+}
+
+/// The operands of a node (a call result's are its site's arguments, handled apart).
+fn operands(node: &Node) -> Vec<u32> {
+    match *node {
+        Node::Input(_) | Node::Const(_) | Node::Global(_) | Node::Result { .. } => vec![],
+        Node::Unary(_, a) | Node::Not(a) => vec![a],
+        Node::Binary(_, a, b)
+        | Node::Less(a, b)
+        | Node::LessEqual(a, b)
+        | Node::And(a, b)
+        | Node::Or(a, b) => vec![a, b],
+        Node::Select(m, t, f) => vec![m, t, f],
+        Node::Fetch { coords, .. } => coords
+            .into_iter()
+            .filter(|&c| c != crate::real::NO_COORDINATE)
+            .collect(),
+    }
+}
+
+/// The lowering of one graph into one module.
+pub(super) struct Lowering<'a, 'g> {
+    pub module: Module,
+    view: &'a View<'g>,
+    tables: Vec<TableHelper>,
+    arrays: Vec<ArrayConstant>,
+    functions: Vec<Option<Lowered>>,
+    /// Per [`Node::Global`] scalar, where it is read.
+    globals: Vec<Source>,
+    /// Per function, names for its captured parameters (from a call site's arguments).
+    capture_names: Vec<Vec<String>>,
+    live: Vec<Liveness>,
+    top_live: Liveness,
+    reachable: Vec<bool>,
+}
+
+impl<'a, 'g> Lowering<'a, 'g> {
+    /// Starts the lowering of `view`: the tables' textures and helpers are already in
+    /// `module` (`tables`).
+    pub fn new(module: Module, view: &'a View<'g>, tables: Vec<TableHelper>) -> Self {
+        let live: Vec<Liveness> = view.functions().iter().map(|f| liveness(&f.body)).collect();
+        let top_live = liveness(view.body());
+        let mut lowering = Lowering {
+            module,
+            view,
+            tables,
+            arrays: Vec::new(),
+            functions: vec![None; view.functions().len()],
+            globals: Vec::new(),
+            capture_names: vec![Vec::new(); view.functions().len()],
+            live,
+            top_live,
+            reachable: vec![false; view.functions().len()],
+        };
+        lowering.name_captures();
+        lowering
+    }
+
+    /// Marks the functions reachable from the top-level body's live calls and names their
+    /// captured parameters after the first call site's arguments where they have a name.
+    fn name_captures(&mut self) {
+        let view = self.view;
+        let top_names = top_scalar_names(view);
+        self.hint_sites(view.body(), &self.top_live.sites.clone(), &top_names);
+        for f in (0..view.functions().len()).rev() {
+            if !self.reachable[f] {
+                continue;
+            }
+            let function = &view.functions()[f];
+            let mut names = explicit_names(function);
+            names.extend(self.capture_names[f].iter().cloned());
+            let sites = self.live[f].sites.clone();
+            self.hint_sites(&function.body, &sites, &names);
+        }
+    }
+
+    /// For each live site of `body` (whose inputs are named `input_names`): the callee is
+    /// reachable, and its captures get names if they have none yet.
+    fn hint_sites(&mut self, body: &Body, live_sites: &[bool], input_names: &[String]) {
+        let global_names = global_scalar_names(self.view);
+        for (site, call) in body.calls.iter().enumerate() {
+            if !live_sites[site] {
+                continue;
+            }
+            let callee = call.function as usize;
+            self.reachable[callee] = true;
+            if !self.capture_names[callee].is_empty() {
+                continue;
+            }
+            let function = &self.view.functions()[callee];
+            let mut taken = explicit_names(function);
+            let first_capture = call.args.len() - function.captures as usize;
+            let mut names = Vec::new();
+            for (i, &arg) in call.args[first_capture..].iter().enumerate() {
+                let hint = match body.nodes[arg as usize] {
+                    Node::Input(k) => input_names.get(k as usize).cloned(),
+                    Node::Global(k) => global_names.get(k as usize).cloned(),
+                    _ => None,
+                };
+                let name = match hint {
+                    Some(h) if !taken.contains(&h) => h,
+                    _ => format!("c{i}"),
+                };
+                taken.push(name.clone());
+                names.push(name);
+            }
+            self.capture_names[callee] = names;
+        }
+    }
+
+    /// Declares the signature's constant parameters as module-scope constants; returns the
+    /// sources of the [`Node::Global`] scalars.
+    pub fn declare_constants(&mut self) -> Result<(), ShaderError> {
+        let view = self.view;
+        for p in &view.signature().parameters {
+            let Some(values) = constant_values(p) else {
+                continue;
+            };
+            if values.len() != p.ty.width() {
+                return Err(ShaderError::Unsupported(format!(
+                    "the constant {} has {} values for {} scalars",
+                    p.name,
+                    values.len(),
+                    p.ty.width()
+                )));
+            }
+            let ty = types::arg_type(&mut self.module, &p.ty);
+            let mut values = values.iter();
+            let init = self.constant_expression(&p.ty, &mut values);
+            let constant = self.module.constants.append(
+                Constant {
+                    name: Some(p.name.clone()),
+                    ty,
+                    init,
+                },
+                Span::UNDEFINED,
+            );
+            let mut paths = Vec::new();
+            scalar_paths(&p.ty, &mut Vec::new(), &mut paths);
+            self.globals
+                .extend(paths.into_iter().map(|(path, vector)| Source::Constant {
+                    constant,
+                    path,
+                    vector,
+                }));
+        }
+        Ok(())
+    }
+
+    /// The global expression of a value of type `ty` from the next scalars of `values`.
+    fn constant_expression(
+        &mut self,
+        ty: &ArgType,
+        values: &mut std::slice::Iter<'_, f32>,
+    ) -> Handle<Expression> {
+        let mut global = |e: Expression| self_append(&mut self.module, e);
+        match ty {
+            ArgType::Scalar => {
+                let v = *values.next().expect("one value per scalar");
+                global(Expression::Literal(naga::Literal::F32(v)))
+            }
+            ArgType::Vec3 => {
+                let components = (0..3)
+                    .map(|_| {
+                        let v = *values.next().expect("one value per scalar");
+                        global(Expression::Literal(naga::Literal::F32(v)))
+                    })
+                    .collect();
+                let ty = types::vec3(&mut self.module);
+                self_append(&mut self.module, Expression::Compose { ty, components })
+            }
+            ArgType::Struct(s) => {
+                let components = s
+                    .fields
+                    .iter()
+                    .map(|(_, t)| self.constant_expression(t, values))
+                    .collect();
+                let ty = types::arg_type(&mut self.module, ty);
+                self_append(&mut self.module, Expression::Compose { ty, components })
+            }
+        }
+    }
+
+    /// Declares the loops' constant arrays: `const NAME: array<Element, K>` with a struct
+    /// `Element` of the loop's field names.
+    pub fn declare_arrays(&mut self) {
+        let view = self.view;
+        for array in view.arrays() {
+            let f = types::f32(&mut self.module);
+            let fields: Vec<(String, Handle<Type>)> =
+                field_names(array.info.fields, array_width(array))
+                    .into_iter()
+                    .map(|n| (n, f))
+                    .collect();
+            let element = types::structure(
+                &mut self.module,
+                &format!("{}Element", camel_case(array.info.name)),
+                &fields,
+            );
+            let count = array.elements.len() as u32;
+            let ty = types::array(&mut self.module, element, Some(count));
+            let rows: Vec<Handle<Expression>> = array
+                .elements
+                .iter()
+                .map(|row| {
+                    let components = row
+                        .iter()
+                        .map(|&v| {
+                            self_append(
+                                &mut self.module,
+                                Expression::Literal(naga::Literal::F32(v)),
+                            )
+                        })
+                        .collect();
+                    self_append(
+                        &mut self.module,
+                        Expression::Compose {
+                            ty: element,
+                            components,
+                        },
+                    )
+                })
+                .collect();
+            let init = self_append(
+                &mut self.module,
+                Expression::Compose {
+                    ty,
+                    components: rows,
+                },
+            );
+            let constant = self.module.constants.append(
+                Constant {
+                    name: Some(array.info.array.to_string()),
+                    ty,
+                    init,
+                },
+                Span::UNDEFINED,
+            );
+            self.arrays.push(ArrayConstant { constant, count });
+        }
+    }
+
+    /// Lowers every reachable graph function, callees first.
+    pub fn lower_functions(&mut self) -> Result<(), ShaderError> {
+        let view = self.view;
+        for (f, function) in view.functions().iter().enumerate() {
+            if !self.reachable[f] {
+                continue;
+            }
+            let mut b = FnBuilder::new(&function.name);
+            let mut inputs = Vec::new();
+            let f32t = types::f32(&mut self.module);
+            let vec3t = types::vec3(&mut self.module);
+            let result = match function.kind {
+                FunctionKind::Function(info) => {
+                    for &(name, shape) in info.parameters {
+                        match shape {
+                            Shape::Scalar => inputs.push(Source::Value(b.argument(name, f32t))),
+                            Shape::Vec3 => {
+                                let base = b.argument(name, vec3t);
+                                inputs.extend((0..3).map(|i| Source::Component {
+                                    base,
+                                    path: vec![i],
+                                    vector: true,
+                                }));
+                            }
+                        }
+                    }
+                    ResultKind::of(info.result, function.body.outputs.len())
+                }
+                FunctionKind::LoopBody(_) => {
+                    for name in explicit_names(function) {
+                        inputs.push(Source::Value(b.argument(&name, f32t)));
+                    }
+                    ResultKind::of(ResultType::Scalars, function.body.outputs.len())
+                }
+            };
+            if inputs.len() != function.inputs as usize {
+                return Err(ShaderError::Unsupported(format!(
+                    "function {} declares {} parameter scalars but its body has {} inputs",
+                    function.name,
+                    inputs.len(),
+                    function.inputs
+                )));
+            }
+            for name in self.capture_names[f].clone() {
+                inputs.push(Source::Value(b.argument(&name, f32t)));
+            }
+            let ty = result.ty(&mut self.module);
+            b.result(ty);
+            let live = std::mem::replace(
+                &mut self.live[f],
+                Liveness {
+                    nodes: vec![],
+                    sites: vec![],
+                },
+            );
+            let outputs = self.lower_body(&mut b, &function.body, &live, &inputs)?;
+            self.live[f] = live;
+            let value = self.compose_result(&mut b, result, &outputs);
+            b.ret(Some(value));
+            let handle = self.module.functions.append(b.finish(), Span::UNDEFINED);
+            self.functions[f] = Some(Lowered { handle, result });
+        }
+        Ok(())
+    }
+
+    /// Lowers the top-level body as the function `name` of the signature's arguments;
+    /// returns it and its result kind.
+    pub fn lower_top(&mut self, name: &str) -> Result<(Handle<Function>, ResultKind), ShaderError> {
+        let view = self.view;
+        let mut b = FnBuilder::new(name);
+        let mut inputs = Vec::new();
+        for p in &view.signature().parameters {
+            if constant_values(p).is_some() {
+                continue;
+            }
+            let ty = types::arg_type(&mut self.module, &p.ty);
+            let base = b.argument(&p.name, ty);
+            let mut paths = Vec::new();
+            scalar_paths(&p.ty, &mut Vec::new(), &mut paths);
+            inputs.extend(paths.into_iter().map(|(path, vector)| {
+                if path.is_empty() {
+                    Source::Value(base)
+                } else {
+                    Source::Component { base, path, vector }
+                }
+            }));
+        }
+        let body = view.body();
+        let result = ResultKind::of(view.signature().result, body.outputs.len());
+        let ty = result.ty(&mut self.module);
+        b.result(ty);
+        let live = std::mem::replace(
+            &mut self.top_live,
+            Liveness {
+                nodes: vec![],
+                sites: vec![],
+            },
+        );
+        let outputs = self.lower_body(&mut b, body, &live, &inputs)?;
+        self.top_live = live;
+        let value = self.compose_result(&mut b, result, &outputs);
+        b.ret(Some(value));
+        let handle = self.module.functions.append(b.finish(), Span::UNDEFINED);
+        Ok((handle, result))
+    }
+
+    /// The function's return value from its output scalars.
+    fn compose_result(
+        &mut self,
+        b: &mut FnBuilder,
+        result: ResultKind,
+        outputs: &[Handle<Expression>],
+    ) -> Handle<Expression> {
+        match result {
+            ResultKind::Scalar => outputs[0],
+            ResultKind::Vec3 => {
+                let ty = types::vec3(&mut self.module);
+                compose(b, ty, outputs, &HashMap::new())
+            }
+            ResultKind::Array(_) => {
+                let ty = result.ty(&mut self.module);
+                b.expr(Expression::Compose {
+                    ty,
+                    components: outputs.to_vec(),
+                })
+            }
+        }
+    }
+
+    /// Lowers the live nodes of `body` (whose inputs are read from `inputs`) into `b`;
+    /// returns the expressions of its outputs.
+    fn lower_body(
+        &mut self,
+        b: &mut FnBuilder,
+        body: &Body,
+        live: &Liveness,
+        inputs: &[Source],
+    ) -> Result<Vec<Handle<Expression>>, ShaderError> {
+        let mut ctx = BodyContext {
+            values: vec![None; body.nodes.len()],
+            origin: HashMap::new(),
+            paths: HashMap::new(),
+            fetches: HashMap::new(),
+            sites: HashMap::new(),
+        };
+        for (i, node) in body.nodes.iter().enumerate() {
+            if !live.nodes[i] {
+                continue;
+            }
+            let v = |k: u32, ctx: &BodyContext| -> Handle<Expression> {
+                ctx.values[k as usize].expect("operands come before their use")
+            };
+            let h = match *node {
+                Node::Input(k) => {
+                    let source = inputs.get(k as usize).ok_or_else(|| {
+                        ShaderError::Unsupported(format!("input {k} beyond the parameters"))
+                    })?;
+                    ctx.read(b, source)
+                }
+                Node::Global(k) => {
+                    let source = self.globals.get(k as usize).cloned().ok_or_else(|| {
+                        ShaderError::Unsupported(format!("constant scalar {k} is not declared"))
+                    })?;
+                    ctx.read(b, &source)
+                }
+                Node::Const(bits) => b.f32(f32::from_bits(bits)),
+                Node::Unary(op, a) => unary(b, op, v(a, &ctx)),
+                Node::Binary(op, l, r) => binary(b, op, v(l, &ctx), v(r, &ctx)),
+                Node::Less(l, r) => b.expr(Expression::Binary {
+                    op: BinaryOperator::Less,
+                    left: v(l, &ctx),
+                    right: v(r, &ctx),
+                }),
+                Node::LessEqual(l, r) => b.expr(Expression::Binary {
+                    op: BinaryOperator::LessEqual,
+                    left: v(l, &ctx),
+                    right: v(r, &ctx),
+                }),
+                Node::And(l, r) => b.expr(Expression::Binary {
+                    op: BinaryOperator::LogicalAnd,
+                    left: v(l, &ctx),
+                    right: v(r, &ctx),
+                }),
+                Node::Or(l, r) => b.expr(Expression::Binary {
+                    op: BinaryOperator::LogicalOr,
+                    left: v(l, &ctx),
+                    right: v(r, &ctx),
+                }),
+                Node::Not(a) => b.expr(Expression::Unary {
+                    op: UnaryOperator::LogicalNot,
+                    expr: v(a, &ctx),
+                }),
+                Node::Select(m, t, f) => b.expr(Expression::Select {
+                    condition: v(m, &ctx),
+                    accept: v(t, &ctx),
+                    reject: v(f, &ctx),
+                }),
+                Node::Fetch {
+                    table,
+                    coords,
+                    channel,
+                } => self.fetch(b, &mut ctx, table, coords, channel)?,
+                Node::Result { site, output } => {
+                    let call = body.calls.get(site as usize).ok_or_else(|| {
+                        ShaderError::Unsupported(format!("call site {site} does not exist"))
+                    })?;
+                    self.site_output(b, &mut ctx, site, call, output)?
+                }
+            };
+            ctx.values[i] = Some(h);
+        }
+        body.outputs
+            .iter()
+            .map(|&o| {
+                ctx.values[o as usize].ok_or_else(|| {
+                    ShaderError::Unsupported(format!("output node {o} was not computed"))
+                })
+            })
+            .collect()
+    }
+
+    /// Channel `channel` of the table fetch at `coords`: one helper call per distinct
+    /// (table, coordinates).
+    fn fetch(
+        &mut self,
+        b: &mut FnBuilder,
+        ctx: &mut BodyContext,
+        table: u32,
+        coords: [u32; MAX_AXES],
+        channel: u32,
+    ) -> Result<Handle<Expression>, ShaderError> {
+        let helper = self
+            .tables
+            .get(table as usize)
+            .cloned()
+            .ok_or_else(|| ShaderError::Unsupported(format!("table {table} does not exist")))?;
+        if channel >= helper.channels {
+            return Err(ShaderError::Unsupported(format!(
+                "channel {channel} of a table of {} channels",
+                helper.channels
+            )));
+        }
+        let result = match ctx.fetches.get(&(table, coords)) {
+            Some(&r) => r,
+            None => {
+                let args = coords[..helper.dims]
+                    .iter()
+                    .map(|&c| ctx.values[c as usize].expect("coordinates come before the fetch"))
+                    .collect();
+                let r = b.call(helper.function, args);
+                ctx.fetches.insert((table, coords), r);
+                r
+            }
+        };
+        let texture = channel / super::TEXTURE_CHANNELS as u32;
+        let component = channel % super::TEXTURE_CHANNELS as u32;
+        let texel = if helper.textures > 1 {
+            b.expr(Expression::AccessIndex {
+                base: result,
+                index: texture,
+            })
+        } else {
+            result
+        };
+        Ok(b.expr(Expression::AccessIndex {
+            base: texel,
+            index: component,
+        }))
+    }
+
+    /// Output `output` of call site `site` (the call or loop lowered at its first use).
+    fn site_output(
+        &mut self,
+        b: &mut FnBuilder,
+        ctx: &mut BodyContext,
+        site: u32,
+        call: &CallSite,
+        output: u32,
+    ) -> Result<Handle<Expression>, ShaderError> {
+        if !ctx.sites.contains_key(&site) {
+            let lowered = match call.kind {
+                CallKind::Call => self.call(b, ctx, call)?,
+                CallKind::Loop { array } => self.run_loop(b, ctx, call, array)?,
+            };
+            ctx.sites.insert(site, lowered);
+        }
+        Ok(match ctx.sites[&site] {
+            SiteValue::Call { result, kind } => match kind {
+                ResultKind::Scalar => result,
+                _ => b.expr(Expression::AccessIndex {
+                    base: result,
+                    index: output,
+                }),
+            },
+            SiteValue::Loop { ref state } => {
+                let pointer = *state.get(output as usize).ok_or_else(|| {
+                    ShaderError::Unsupported(format!("loop output {output} beyond its state"))
+                })?;
+                b.load(pointer)
+            }
+        })
+    }
+
+    fn callee(&self, call: &CallSite) -> Result<(Lowered, &'a super::view::Function), ShaderError> {
+        let view = self.view;
+        let function = view
+            .functions()
+            .get(call.function as usize)
+            .ok_or_else(|| {
+                ShaderError::Unsupported(format!("function {} does not exist", call.function))
+            })?;
+        let lowered = self.functions[call.function as usize].ok_or_else(|| {
+            ShaderError::Unsupported(format!(
+                "function {} is called before it is defined",
+                function.name
+            ))
+        })?;
+        Ok((lowered, function))
+    }
+
+    /// A call: the explicit arguments (vectors composed from their scalars) and the captures.
+    fn call(
+        &mut self,
+        b: &mut FnBuilder,
+        ctx: &mut BodyContext,
+        call: &CallSite,
+    ) -> Result<SiteValue, ShaderError> {
+        let (lowered, function) = self.callee(call)?;
+        let expected = (function.inputs + function.captures) as usize;
+        if call.args.len() != expected {
+            return Err(ShaderError::Unsupported(format!(
+                "{} is called with {} scalars for {expected} parameters",
+                function.name,
+                call.args.len()
+            )));
+        }
+        let values: Vec<Handle<Expression>> = call
+            .args
+            .iter()
+            .map(|&a| ctx.values[a as usize].expect("arguments come before the call"))
+            .collect();
+        let mut args = Vec::new();
+        let mut rest = &values[..];
+        if let FunctionKind::Function(info) = function.kind {
+            let vec3t = types::vec3(&mut self.module);
+            for &(_, shape) in info.parameters {
+                match shape {
+                    Shape::Scalar => {
+                        args.push(rest[0]);
+                        rest = &rest[1..];
+                    }
+                    Shape::Vec3 => {
+                        args.push(compose(b, vec3t, &rest[..3], &ctx.origin));
+                        rest = &rest[3..];
+                    }
+                }
+            }
+        }
+        args.extend_from_slice(rest);
+        let result = b.call(lowered.handle, args);
+        Ok(SiteValue::Call {
+            result,
+            kind: lowered.result,
+        })
+    }
+
+    /// A loop over a constant array: `var` state initialised from the call's first
+    /// arguments, then `for (var k = 0u; k < K; k++) { state = body(state, ARRAY[k],
+    /// captures); }`.
+    fn run_loop(
+        &mut self,
+        b: &mut FnBuilder,
+        ctx: &mut BodyContext,
+        call: &CallSite,
+        array: u32,
+    ) -> Result<SiteValue, ShaderError> {
+        let (lowered, function) = self.callee(call)?;
+        let constant = *self.arrays.get(array as usize).ok_or_else(|| {
+            ShaderError::Unsupported(format!("constant array {array} does not exist"))
+        })?;
+        let info = self.view.arrays()[array as usize].info;
+        let state_len = function.body.outputs.len();
+        let width = array_width(&self.view.arrays()[array as usize]);
+        if function.inputs as usize != state_len + width
+            || call.args.len() != state_len + function.captures as usize
+        {
+            return Err(ShaderError::Unsupported(format!(
+                "loop {} threads {state_len} state scalars over elements of {width} but takes \
+                 {} inputs and is called with {} values",
+                function.name,
+                function.inputs,
+                call.args.len()
+            )));
+        }
+        let f32t = types::f32(&mut self.module);
+        let u32t = types::u32(&mut self.module);
+        let names = field_names(info.state, state_len);
+        let mut state = Vec::with_capacity(state_len);
+        for (s, name) in names.iter().enumerate() {
+            let init = ctx.values[call.args[s] as usize].expect("arguments come before the loop");
+            let var = b.local(name, f32t, None);
+            b.store(var, init);
+            state.push(var);
+        }
+        let zero = b.u32(0);
+        let k = b.local("k", u32t, Some(zero));
+        let captures: Vec<Handle<Expression>> = call.args[state_len..]
+            .iter()
+            .map(|&a| ctx.values[a as usize].expect("captures come before the loop"))
+            .collect();
+
+        b.open_block();
+        let index = b.load(k);
+        let count = b.u32(constant.count);
+        let more = b.expr(Expression::Binary {
+            op: BinaryOperator::Less,
+            left: index,
+            right: count,
+        });
+        b.open_block();
+        let accept = b.close_block();
+        b.open_block();
+        b.stmt(Statement::Break);
+        let reject = b.close_block();
+        b.stmt(Statement::If {
+            condition: more,
+            accept,
+            reject,
+        });
+        let array_value = b.expr(Expression::Constant(constant.constant));
+        let index = b.load(k);
+        let element = b.expr(Expression::Access {
+            base: array_value,
+            index,
+        });
+        let mut args: Vec<Handle<Expression>> = state.iter().map(|&p| b.load(p)).collect();
+        for field in 0..width as u32 {
+            args.push(b.expr(Expression::AccessIndex {
+                base: element,
+                index: field,
+            }));
+        }
+        args.extend(captures);
+        let result = b.call(lowered.handle, args);
+        for (s, &var) in state.iter().enumerate() {
+            let value = match lowered.result {
+                ResultKind::Scalar => result,
+                _ => b.expr(Expression::AccessIndex {
+                    base: result,
+                    index: s as u32,
+                }),
+            };
+            b.store(var, value);
+        }
+        let body = b.close_block();
+
+        b.open_block();
+        let index = b.load(k);
+        let one = b.u32(1);
+        let next = b.expr(Expression::Binary {
+            op: BinaryOperator::Add,
+            left: index,
+            right: one,
+        });
+        b.store(k, next);
+        let continuing = b.close_block();
+        b.stmt(Statement::Loop {
+            body,
+            continuing,
+            break_if: None,
+        });
+        Ok(SiteValue::Loop { state })
+    }
+}
+
+/// The values of one call site.
+enum SiteValue {
+    Call {
+        result: Handle<Expression>,
+        kind: ResultKind,
+    },
+    Loop {
+        state: Vec<Handle<Expression>>,
+    },
+}
+
+/// What the lowering of one body remembers.
+struct BodyContext {
+    values: Vec<Option<Handle<Expression>>>,
+    /// Expressions that are component `i` of a `vec3` expression: (vector, i).
+    origin: HashMap<Handle<Expression>, (Handle<Expression>, u32)>,
+    /// `base.path` expressions already built.
+    paths: HashMap<(Handle<Expression>, Vec<u32>), Handle<Expression>>,
+    fetches: HashMap<(u32, [u32; MAX_AXES]), Handle<Expression>>,
+    sites: HashMap<u32, SiteValue>,
+}
+
+impl BodyContext {
+    /// The expression reading `source`.
+    fn read(&mut self, b: &mut FnBuilder, source: &Source) -> Handle<Expression> {
+        match source {
+            Source::Value(h) => *h,
+            Source::Component { base, path, vector } => self.path(b, *base, path, *vector),
+            Source::Constant {
+                constant,
+                path,
+                vector,
+            } => {
+                let base = b.expr(Expression::Constant(*constant));
+                self.path(b, base, path, *vector)
+            }
+        }
+    }
+
+    /// `base.path[0]...`, each prefix built once.
+    fn path(
+        &mut self,
+        b: &mut FnBuilder,
+        base: Handle<Expression>,
+        path: &[u32],
+        vector: bool,
+    ) -> Handle<Expression> {
+        let mut h = base;
+        for depth in 1..=path.len() {
+            let key = (base, path[..depth].to_vec());
+            let parent = h;
+            h = match self.paths.get(&key) {
+                Some(&e) => e,
+                None => {
+                    let e = b.expr(Expression::AccessIndex {
+                        base: parent,
+                        index: path[depth - 1],
+                    });
+                    self.paths.insert(key, e);
+                    if vector && depth == path.len() {
+                        self.origin.insert(e, (parent, path[depth - 1]));
+                    }
+                    e
+                }
+            };
+        }
+        h
+    }
+}
+
+/// `vec3<f32>(a, b, c)`, or the vector itself when the three are its x, y, z.
+fn compose(
+    b: &mut FnBuilder,
+    ty: Handle<Type>,
+    scalars: &[Handle<Expression>],
+    origin: &HashMap<Handle<Expression>, (Handle<Expression>, u32)>,
+) -> Handle<Expression> {
+    let parts: Vec<Option<&(Handle<Expression>, u32)>> =
+        scalars.iter().map(|s| origin.get(s)).collect();
+    if let [Some(&(v0, 0)), Some(&(v1, 1)), Some(&(v2, 2))] = parts[..] {
+        if v0 == v1 && v1 == v2 {
+            return v0;
+        }
+    }
+    b.expr(Expression::Compose {
+        ty,
+        components: scalars.to_vec(),
+    })
+}
+
+fn unary(b: &mut FnBuilder, op: Unary, a: Handle<Expression>) -> Handle<Expression> {
+    let fun = match op {
+        Unary::Neg => {
+            return b.expr(Expression::Unary {
+                op: UnaryOperator::Negate,
+                expr: a,
+            })
+        }
+        Unary::Sqrt => MathFunction::Sqrt,
+        Unary::Exp => MathFunction::Exp,
+        Unary::Ln => MathFunction::Log,
+        Unary::Sin => MathFunction::Sin,
+        Unary::Cos => MathFunction::Cos,
+        Unary::Abs => MathFunction::Abs,
+        Unary::Floor => MathFunction::Floor,
+    };
+    math(b, fun, a, None)
+}
+
+fn binary(
+    b: &mut FnBuilder,
+    op: Binary,
+    left: Handle<Expression>,
+    right: Handle<Expression>,
+) -> Handle<Expression> {
+    let op = match op {
+        Binary::Add => BinaryOperator::Add,
+        Binary::Sub => BinaryOperator::Subtract,
+        Binary::Mul => BinaryOperator::Multiply,
+        Binary::Div => BinaryOperator::Divide,
+        Binary::Atan2 => return math(b, MathFunction::Atan2, left, Some(right)),
+        Binary::Min => return math(b, MathFunction::Min, left, Some(right)),
+        Binary::Max => return math(b, MathFunction::Max, left, Some(right)),
+    };
+    b.expr(Expression::Binary { op, left, right })
+}
+
+/// `fun(arg)` or `fun(arg, arg1)`.
+pub(super) fn math(
+    b: &mut FnBuilder,
+    fun: MathFunction,
+    arg: Handle<Expression>,
+    arg1: Option<Handle<Expression>>,
+) -> Handle<Expression> {
+    b.expr(Expression::Math {
+        fun,
+        arg,
+        arg1,
+        arg2: None,
+        arg3: None,
+    })
+}
+
+fn self_append(module: &mut Module, e: Expression) -> Handle<Expression> {
+    module.global_expressions.append(e, Span::UNDEFINED)
+}
+
+/// The access paths of the scalars of a value of type `ty` (a vector's components, a
+/// struct's fields recursively) and whether each ends in a vector component.
+fn scalar_paths(ty: &ArgType, prefix: &mut Vec<u32>, out: &mut Vec<(Vec<u32>, bool)>) {
+    match ty {
+        ArgType::Scalar => out.push((prefix.clone(), false)),
+        ArgType::Vec3 => {
+            for i in 0..3 {
+                let mut p = prefix.clone();
+                p.push(i);
+                out.push((p, true));
+            }
+        }
+        ArgType::Struct(s) => {
+            for (i, (_, t)) in s.fields.iter().enumerate() {
+                prefix.push(i as u32);
+                scalar_paths(t, prefix, out);
+                prefix.pop();
+            }
+        }
+    }
+}
+
+/// Names of the scalars of a value named `base` of type `ty`: `h`, `wi_x`, and for a struct
+/// its fields' names (`eta`, `color_y`).
+fn scalar_names(base: &str, ty: &ArgType, out: &mut Vec<String>) {
+    match ty {
+        ArgType::Scalar => out.push(base.to_string()),
+        ArgType::Vec3 => out.extend(["x", "y", "z"].map(|c| format!("{base}_{c}"))),
+        ArgType::Struct(s) => {
+            for (name, t) in &s.fields {
+                scalar_names(name, t, out);
+            }
+        }
+    }
+}
+
+/// Names of the top-level body's input scalars.
+fn top_scalar_names(view: &View) -> Vec<String> {
+    let mut out = Vec::new();
+    for p in &view.signature().parameters {
+        if constant_values(p).is_none() {
+            scalar_names(&p.name, &p.ty, &mut out);
+        }
+    }
+    out
+}
+
+/// Names of the [`Node::Global`] scalars.
+fn global_scalar_names(view: &View) -> Vec<String> {
+    let mut out = Vec::new();
+    for p in &view.signature().parameters {
+        if constant_values(p).is_some() {
+            scalar_names(&p.name, &p.ty, &mut out);
+        }
+    }
+    out
+}
+
+/// Names of a function's explicit parameters, per scalar for a loop body (state, then the
+/// element's fields) and per parameter for a function.
+fn explicit_names(function: &super::view::Function) -> Vec<String> {
+    match function.kind {
+        FunctionKind::Function(info) => {
+            let mut out = Vec::new();
+            for &(name, shape) in info.parameters {
+                match shape {
+                    Shape::Scalar => out.push(name.to_string()),
+                    Shape::Vec3 => out.extend(["x", "y", "z"].map(|c| format!("{name}_{c}"))),
+                }
+            }
+            out
+        }
+        FunctionKind::LoopBody(info) => {
+            let state = function.body.outputs.len();
+            let mut out = field_names(info.state, state);
+            let fields = (function.inputs as usize).saturating_sub(state);
+            out.extend(field_names(info.fields, fields));
+            out
+        }
+    }
+}
+
+/// `count` names: `names` if it has that many, else `s0, s1, ...` / `e0, e1, ...`.
+fn field_names(names: &[&str], count: usize) -> Vec<String> {
+    if names.len() == count {
+        names.iter().map(|s| s.to_string()).collect()
+    } else {
+        (0..count).map(|i| format!("v{i}")).collect()
+    }
+}
+
+/// Scalars per element of a constant array.
+fn array_width(array: &super::view::ConstArray) -> usize {
+    array
+        .elements
+        .first()
+        .map_or(array.info.fields.len(), |e| e.len())
+}
+
+/// `far_field_node` -> `FarFieldNode`.
+fn camel_case(name: &str) -> String {
+    name.split('_')
+        .filter(|w| !w.is_empty())
+        .map(|w| {
+            let mut c = w.chars();
+            match c.next() {
+                Some(first) => first.to_ascii_uppercase().to_string() + &c.as_str().to_lowercase(),
+                None => String::new(),
+            }
+        })
+        .collect()
+}
