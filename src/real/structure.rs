@@ -15,6 +15,37 @@
 use super::traced::{map_operands, Node, ResultType};
 use std::collections::HashMap;
 
+/// A [`ShaderFunction`] describing the function `name` of the calling module: its source is
+/// `module_path!()::name`, its parameters the listed names (scalars, or `name: vec3` for a
+/// `vec3<f32>`), its result `f32` / `array<f32, N>` or, with `-> vec3`, `vec3<f32>`.
+///
+/// ```
+/// use hairmath::real::{Real, ShaderFunction};
+/// /// `x^2 + y`.
+/// fn square_plus<R: Real>(x: R, y: R) -> R {
+///     const FUNCTION: ShaderFunction =
+///         hairmath::shader_function!(square_plus, "an example, eq. 1", [x, y]);
+///     R::call(&FUNCTION, [x, y], |[x, y]| [x * x + y])[0]
+/// }
+/// assert_eq!(square_plus(3.0_f32, 1.0), 10.0);
+/// ```
+#[macro_export]
+macro_rules! shader_function {
+    ($name:ident, $equation:expr, [$($param:ident $(: $shape:ident)?),* $(,)?] $(-> $result:ident)?) => {
+        $crate::real::ShaderFunction {
+            name: stringify!($name),
+            source: concat!(module_path!(), "::", stringify!($name)),
+            equation: $equation,
+            parameters: &[$((stringify!($param), $crate::shader_function!(@shape $($shape)?))),*],
+            result: $crate::shader_function!(@result $($result)?),
+        }
+    };
+    (@shape) => { $crate::real::Shape::Scalar };
+    (@shape vec3) => { $crate::real::Shape::Vec3 };
+    (@result) => { $crate::real::ResultType::Scalars };
+    (@result vec3) => { $crate::real::ResultType::Vec3 };
+}
+
 /// The shape of a parameter of a [`ShaderFunction`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Shape {

@@ -371,7 +371,8 @@ impl Recorder {
     }
 
     /// The index in frame `level` of the value `node` of the frame `trace`: the node itself,
-    /// or, for a value of an enclosing frame, a capture (constants are recorded again).
+    /// or, for a value of an enclosing frame, a capture (literal constants are recorded
+    /// again).
     ///
     /// # Panics
     /// If `trace` is no frame of this recorder.
@@ -387,7 +388,9 @@ impl Recorder {
         let outer = self.localize(level - 1, node, trace);
         let outer_node = self.frames[level - 1].body.nodes[outer as usize];
         let frame = &mut self.frames[level];
-        if matches!(outer_node, Node::Const(_) | Node::Global(_)) {
+        // Literals are written again; everything else (baked uniforms included) is passed,
+        // so that a function called with different uniforms is one function.
+        if matches!(outer_node, Node::Const(_)) {
             return frame.intern(outer_node);
         }
         if let Some(&local) = frame.capture_index.get(&outer) {

@@ -613,6 +613,8 @@ mod classic;
 mod frostbite;
 /// The closed forms of the real-time models (`hairmath::models`).
 mod models;
+/// The structure the traces keep: functions, loops, baked uniforms.
+mod structure;
 /// Table fetches ([`Real::sample_table`]) and the models that read tables.
 mod tables;
 /// The Unreal models (`hairmath::models::{Karis, KarisRefit}`).
