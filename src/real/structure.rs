@@ -366,7 +366,7 @@ mod tests {
             let sp = |x: Traced, k: Traced| x * x + k;
             let mut sum = Traced::c(0.0);
             for (w, o) in [(0.25, 1.0), (0.75, -2.0)] {
-                sum = sum + Traced::c(w) * sp(a + Traced::c(o), Traced::c(0.5));
+                sum += Traced::c(w) * sp(a + Traced::c(o), Traced::c(0.5));
             }
             sp(a, b) - sp(b, b) + sum
         }

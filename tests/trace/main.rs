@@ -392,7 +392,7 @@ fn numbers<R: Real>(x: &[R]) -> RandomNumbers<R> {
 fn sample_parameters() -> Vec<Parameter> {
     let mut p = vec![Parameter::argument("wo", ArgType::Vec3)];
     for name in ["h", "lobe", "longitudinal", "cone", "offset"] {
-        p.push(Parameter::argument(&name, ArgType::Scalar));
+        p.push(Parameter::argument(name, ArgType::Scalar));
     }
     p
 }
