@@ -1,7 +1,7 @@
 //! Fresnel reflectance of a dielectric interface, and the Bravais virtual indices that reduce
 //! refraction by an inclined ray to refraction in the fibre's normal plane.
 
-use crate::real::{safe_sqrt, Real};
+use crate::real::{safe_sqrt, Real, ShaderFunction};
 
 /// Unpolarised Fresnel reflectance of light arriving from outside a dielectric of relative
 /// index `eta` at an angle whose cosine to the normal is `cos_i` (Born and Wolf, section 1.5;
@@ -32,7 +32,14 @@ pub fn fresnel_dielectric<R: Real>(cos_i: R, eta: R) -> R {
 /// `r_par = a / b`, `r_perp = c / d`.
 #[inline(always)]
 pub fn fresnel_from_outside<R: Real>(cos_i: R, eta: R, inv_eta: R) -> R {
-    reflectance(cos_i, eta, inv_eta).0
+    const FUNCTION: ShaderFunction = crate::shader_function!(
+        fresnel,
+        "Born and Wolf, section 1.5 (unpolarised dielectric reflectance)",
+        [cos_i, eta, inv_eta]
+    );
+    R::call(&FUNCTION, [cos_i, eta, inv_eta], |[cos_i, eta, inv_eta]| {
+        [reflectance(cos_i, eta, inv_eta).0]
+    })[0]
 }
 
 /// `(R, sin^2 theta_t)` for `cos_i` in [0, 1] on the side of relative index `eta` (reciprocal
@@ -52,10 +59,14 @@ fn reflectance<R: Real>(cos_i: R, eta: R, inv_eta: R) -> (R, R) {
 /// Schlick's approximation `R0 + (1 - R0)(1 - cos_i)^5` with `R0 = ((eta - 1)/(eta + 1))^2`
 /// (Schlick 1994, eq. 24), for light arriving from outside (`cos_i` clamped to [0, 1]).
 pub fn fresnel_schlick<R: Real>(cos_i: R, eta: R) -> R {
-    let r0 = ((eta - R::c(1.0)) / (eta + R::c(1.0))).sqr();
-    let m = R::c(1.0) - cos_i.clamp(R::c(0.0), R::c(1.0));
-    let m2 = m * m;
-    r0 + (R::c(1.0) - r0) * m2 * m2 * m
+    const FUNCTION: ShaderFunction =
+        crate::shader_function!(fresnel_schlick, "Schlick 1994, eq. 24", [cos_i, eta]);
+    R::call(&FUNCTION, [cos_i, eta], |[cos_i, eta]| {
+        let r0 = ((eta - R::c(1.0)) / (eta + R::c(1.0))).sqr();
+        let m = R::c(1.0) - cos_i.clamp(R::c(0.0), R::c(1.0));
+        let m2 = m * m;
+        [r0 + (R::c(1.0) - r0) * m2 * m2 * m]
+    })[0]
 }
 
 /// Bravais' virtual index for the perpendicular polarisation and the azimuthal (projected)

@@ -8,7 +8,7 @@
 //! to [-pi, pi] (Marschner 2003, section 2).
 
 use crate::error::ParamError;
-use crate::real::Real;
+use crate::real::{Real, ShaderFunction};
 
 /// A 3-vector of any [`Real`] (glam is used at the API boundary; generic code needs its own).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -151,18 +151,28 @@ pub fn fibre_angles<R: Real>(tangent: V3<R>, wi: V3<R>, wo: V3<R>) -> FibreAngle
 /// Angles of unit directions given in the local frame (tangent +X).
 #[inline(always)]
 pub fn local_fibre_angles<R: Real>(wi: V3<R>, wo: V3<R>) -> FibreAngles<R> {
-    let x = V3::c(1.0, 0.0, 0.0);
-    let pi_ = V3::new(R::c(0.0), wi.y, wi.z);
-    let po = V3::new(R::c(0.0), wo.y, wo.z);
-    // phi_o - phi_i is the signed angle from wi's projection to wo's.
-    let (sin_theta_i, cos_theta_i) = local_sin_cos_theta(wi);
-    let (sin_theta_o, cos_theta_o) = local_sin_cos_theta(wo);
+    const FUNCTION: ShaderFunction = crate::shader_function!(
+        fibre_angles,
+        "the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane",
+        [wi: vec3, wo: vec3]
+    );
+    let args = [wi.x, wi.y, wi.z, wo.x, wo.y, wo.z];
+    let [sin_theta_i, cos_theta_i, sin_theta_o, cos_theta_o, phi] =
+        R::call(&FUNCTION, args, |[ix, iy, iz, ox, oy, oz]| {
+            let x = V3::c(1.0, 0.0, 0.0);
+            let pi_ = V3::new(R::c(0.0), iy, iz);
+            let po = V3::new(R::c(0.0), oy, oz);
+            // phi_o - phi_i is the signed angle from wi's projection to wo's.
+            let (sin_i, cos_i) = local_sin_cos_theta(V3::new(ix, iy, iz));
+            let (sin_o, cos_o) = local_sin_cos_theta(V3::new(ox, oy, oz));
+            [sin_i, cos_i, sin_o, cos_o, azimuth_between(x, pi_, po)]
+        });
     FibreAngles {
         sin_theta_i,
         cos_theta_i,
         sin_theta_o,
         cos_theta_o,
-        phi: azimuth_between(x, pi_, po),
+        phi,
     }
 }
 

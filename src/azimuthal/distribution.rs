@@ -1,4 +1,4 @@
-use crate::real::{pi, Real};
+use crate::real::{pi, Real, ShaderLoop};
 
 /// `(e, (1 + e)^2)` with `e = e^(-|x| / s)`, from `inv_scale = 1 / s`: the logistic density
 /// is `e / (s (1 + e)^2)`. Written with `|x|` so the exponential never overflows.
@@ -117,13 +117,22 @@ pub const WRAPPED_GAUSSIAN_TERMS: usize = 9;
 /// `sum_k g(beta, x - 2 pi k)` for k = -4..=4 (d'Eon et al. 2011, eq. 11). For beta <= 3 the
 /// omitted images are below e^-44 of the peak. `x` in [-pi, pi].
 pub fn wrapped_gaussian<R: Real>(x: R, beta: R) -> R {
+    const IMAGES: ShaderLoop = ShaderLoop {
+        name: "wrapped_gaussian_image",
+        array: "WRAPPED_GAUSSIAN_SHIFTS",
+        fields: &["shift"],
+        state: &["sum"],
+        source: "hairmath::azimuthal::wrapped_gaussian",
+        equation: "d'Eon et al. 2011, eq. 11",
+    };
     let two_pi = 2.0 * core::f64::consts::PI;
     let norm = R::c(1.0 / (two_pi).sqrt()) / beta;
-    let mut sum = R::c(0.0);
-    for k in -4..=4 {
-        let z = (x - R::c(two_pi * k as f64)) / beta;
-        sum += (R::c(-0.5) * z * z).exp();
-    }
+    let shifts: [[R; 1]; WRAPPED_GAUSSIAN_TERMS] =
+        core::array::from_fn(|i| [R::c(two_pi * (i as f64 - 4.0))]);
+    let [sum] = R::fold(&IMAGES, &shifts, [R::c(0.0)], |[sum], [shift]| {
+        let z = (x - shift) / beta;
+        [sum + (R::c(-0.5) * z * z).exp()]
+    });
     sum * norm
 }
 

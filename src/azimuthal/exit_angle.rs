@@ -1,12 +1,19 @@
 use super::path::Refraction;
 use crate::absorption::PathLength;
-use crate::real::{pi, safe_sqrt, Real};
+use crate::real::{pi, safe_sqrt, Real, ShaderFunction};
 
 /// The azimuthal exit angle of path p (p internal segments) entering at angle gamma_i and
 /// refracting to gamma_t: `Phi(p) = 2 p gamma_t - 2 gamma_i + p pi` (Marschner et al. 2003,
 /// eq. 3; pbrt-v4 `Phi`). `p` is a real so that traced code can select it.
 pub fn exit_angle<R: Real>(p: R, gamma_i: R, gamma_t: R) -> R {
-    R::c(2.0) * p * gamma_t - R::c(2.0) * gamma_i + p * pi::<R>()
+    const FUNCTION: ShaderFunction = crate::shader_function!(
+        exit_angle,
+        "Marschner et al. 2003, eq. 3",
+        [p, gamma_i, gamma_t]
+    );
+    R::call(&FUNCTION, [p, gamma_i, gamma_t], |[p, gamma_i, gamma_t]| {
+        [R::c(2.0) * p * gamma_t - R::c(2.0) * gamma_i + p * pi::<R>()]
+    })[0]
 }
 
 /// sin(gamma_t) for offset h and a ray inclined at theta (given by its sine and cosine): Snell's

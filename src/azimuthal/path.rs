@@ -7,7 +7,7 @@
 use super::attenuation::{attenuations_from_fresnel, LOBES};
 use crate::absorption::{segment_length, PathLength};
 use crate::fresnel::fresnel_from_outside;
-use crate::real::{safe_sqrt, Real};
+use crate::real::{safe_sqrt, Real, ShaderFunction};
 
 /// Refraction into a fibre of relative index `eta` of a ray inclined at theta to its normal
 /// plane, for any offset: the quantities that do not depend on h.
@@ -72,15 +72,28 @@ impl<R: Real> Refraction<R> {
     /// way).
     #[inline(always)]
     pub fn path(&self, h: R, length: PathLength) -> FibrePath<R> {
-        let one = R::c(1.0);
-        let h = h.clamp(-one, one);
-        let sin_gamma_t = self.sin_gamma_t(h);
-        let cos_gamma_t = safe_sqrt(one - sin_gamma_t * sin_gamma_t);
-        let (cos_gamma_o, fresnel) = entry(self.cos_theta, h, self.eta, self.inv_eta);
+        const FUNCTION: ShaderFunction = crate::shader_function!(
+            fibre_path,
+            "Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)",
+            [h]
+        );
+        let [gamma_o, gamma_t, segment_length, fresnel] = R::call(&FUNCTION, [h], |[h]| {
+            let one = R::c(1.0);
+            let h = h.clamp(-one, one);
+            let sin_gamma_t = self.sin_gamma_t(h);
+            let cos_gamma_t = safe_sqrt(one - sin_gamma_t * sin_gamma_t);
+            let (cos_gamma_o, fresnel) = entry(self.cos_theta, h, self.eta, self.inv_eta);
+            [
+                h.atan2(cos_gamma_o),
+                sin_gamma_t.atan2(cos_gamma_t),
+                segment_length(cos_gamma_t, self.inv_cos_theta_t, length),
+                fresnel,
+            ]
+        });
         FibrePath {
-            gamma_o: h.atan2(cos_gamma_o),
-            gamma_t: sin_gamma_t.atan2(cos_gamma_t),
-            segment_length: segment_length(cos_gamma_t, self.inv_cos_theta_t, length),
+            gamma_o,
+            gamma_t,
+            segment_length,
             fresnel,
         }
     }

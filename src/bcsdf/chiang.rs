@@ -32,7 +32,7 @@ use crate::geometry::{
 };
 use crate::lobe::{deon_lobe_sample_cos_theta, DeonLobe};
 use crate::params::HairParams;
-use crate::real::{pi, safe_sqrt, wrap_angle, Real};
+use crate::real::{pi, safe_sqrt, wrap_angle, Real, ShaderFunction};
 
 /// The names of the four lobes, in the order of every per-lobe array of the Chiang models.
 pub const CHIANG_LOBES: [&str; LOBES] = ["R", "TT", "TRT", "residual"];
@@ -407,7 +407,13 @@ impl<R: Real, O> ChiangHair<R, O> {
         let dphi: [R; 3] = core::array::from_fn(|p| {
             wrap_angle(at.phi - exit_angle(R::c(p as f64), path.gamma_o, path.gamma_t))
         });
-        let [n0, n1, n2] = self.logistic().densities(dphi);
+        // N_p of R, TT and TRT about their exit angles, as one shader function.
+        const DISTRIBUTIONS: ShaderFunction = crate::shader_function!(
+            trimmed_logistics,
+            "Chiang et al. 2016, eq. 13",
+            [dphi_r, dphi_tt, dphi_trt]
+        );
+        let [n0, n1, n2] = R::call(&DISTRIBUTIONS, dphi, |dphi| self.logistic().densities(dphi));
         let n = [n0, n1, n2, R::c(0.5 * core::f64::consts::FRAC_1_PI)];
         let wn = if WITH_PDF {
             let w = lobe_weights(&a);

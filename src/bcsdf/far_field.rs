@@ -29,7 +29,7 @@ use crate::error::ParamError;
 use crate::geometry::V3;
 use crate::params::HairParams;
 use crate::quadrature::{adaptive, gauss_legendre};
-use crate::real::{safe_asin, wrap_angle, Real};
+use crate::real::{safe_asin, wrap_angle, Real, ShaderLoop};
 
 /// Fixed quadrature nodes over the offset: (h_k, P_k) with P_k >= 0 summing to 1.
 #[derive(Clone, Debug, PartialEq)]
@@ -108,6 +108,70 @@ impl<R: Real> OffsetNodes<R> {
     }
 }
 
+/// The names of `N_p A_p` per lobe and channel, the state of the far field's loop over nodes.
+const LOBE_CHANNELS: [&str; 12] = [
+    "r_red",
+    "r_green",
+    "r_blue",
+    "tt_red",
+    "tt_green",
+    "tt_blue",
+    "trt_red",
+    "trt_green",
+    "trt_blue",
+    "residual_red",
+    "residual_green",
+    "residual_blue",
+];
+
+/// The loop of the fixed-node far field over its nodes (h_k, P_k): `N_p A_p += P_k (N_p A_p)(h_k)`.
+const NODES: ShaderLoop = ShaderLoop {
+    name: "far_field_node",
+    array: "FAR_FIELD_OFFSETS",
+    fields: &["h", "weight"],
+    state: &LOBE_CHANNELS,
+    source: "hairmath::bcsdf::far_field::OffsetNodes::azimuthal",
+    equation: "Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature",
+};
+
+/// [`NODES`] also accumulating the lobe-choice weights `w_p N_p` of sampling.
+const NODES_WITH_PDF: ShaderLoop = ShaderLoop {
+    name: "far_field_node_with_pdf",
+    state: &[
+        "r_red",
+        "r_green",
+        "r_blue",
+        "tt_red",
+        "tt_green",
+        "tt_blue",
+        "trt_red",
+        "trt_green",
+        "trt_blue",
+        "residual_red",
+        "residual_green",
+        "residual_blue",
+        "w_r",
+        "w_tt",
+        "w_trt",
+        "w_residual",
+    ],
+    ..NODES
+};
+
+/// `sums[k] += weight * values[k]`.
+#[inline(always)]
+fn add_weighted<R: Real>(sums: &mut [R], weight: R, values: &[R]) {
+    for (s, &v) in sums.iter_mut().zip(values) {
+        *s += weight * v;
+    }
+}
+
+/// The first twelve sums as `[lobe][channel]`.
+#[inline(always)]
+fn per_lobe<R: Real>(sums: &[R]) -> [[R; 3]; LOBES] {
+    core::array::from_fn(|p| core::array::from_fn(|c| sums[3 * p + c]))
+}
+
 impl OffsetsIn for OffsetNodes<f64> {
     type In<S: Real> = OffsetNodes<S>;
     fn cast<S: Real>(&self) -> OffsetNodes<S> {
@@ -131,20 +195,28 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
         hair: &ChiangHair<R, O>,
         at: Outgoing<R>,
     ) -> AzimuthalFactors<R> {
-        let mut an = [[R::c(0.0); 3]; LOBES];
-        let mut wn = [R::c(0.0); LOBES];
-        for &(h, weight) in &self.nodes {
-            let (a, w) = hair.azimuthal_at::<WITH_PDF>(Outgoing { h, ..at });
-            for p in 0..LOBES {
-                for c in 0..3 {
-                    an[p][c] += weight * a[p][c];
-                }
-                if WITH_PDF {
-                    wn[p] += weight * w[p];
-                }
-            }
+        let elements: Vec<[R; 2]> = self.nodes.iter().map(|&(h, w)| [h, w]).collect();
+        let node = |h: R| hair.azimuthal_at::<WITH_PDF>(Outgoing { h, ..at });
+        if WITH_PDF {
+            let sums = R::fold(
+                &NODES_WITH_PDF,
+                &elements,
+                [R::c(0.0); 16],
+                |mut s, [h, w]| {
+                    let (a, wn) = node(h);
+                    add_weighted(&mut s[..12], w, a.as_flattened());
+                    add_weighted(&mut s[12..], w, &wn);
+                    s
+                },
+            );
+            (per_lobe(&sums), core::array::from_fn(|p| sums[12 + p]))
+        } else {
+            let sums = R::fold(&NODES, &elements, [R::c(0.0); 12], |mut s, [h, w]| {
+                add_weighted(&mut s, w, node(h).0.as_flattened());
+                s
+            });
+            (per_lobe(&sums), [R::c(0.0); LOBES])
         }
-        (an, wn)
     }
 
     /// Node k is chosen with probability P_k: when P_0 + ... + P_{k-1} <= u < P_0 + ... + P_k

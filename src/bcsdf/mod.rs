@@ -33,7 +33,7 @@ pub use inputs::{
 };
 pub use marschner::{Marschner2003, COLOR_BETA_N, MARSCHNER_LOBES};
 pub use model::{
-    query_of, query_parameters, sum_lobes, trace_eval, trace_model, traced_inputs, Bcsdf,
-    HairSample, Model, Query, RandomNumbers, SampledBcsdf, UniformBlock, UniformField,
-    UniformValue,
+    query_of, query_parameters, sum_lobes, trace_eval, trace_eval_with, trace_model, traced_inputs,
+    Bcsdf, HairSample, Model, Query, RandomNumbers, SampledBcsdf, UniformBlock, UniformField,
+    UniformValue, UniformsIn,
 };

@@ -304,22 +304,37 @@ macro_rules! uniform_block {
     };
 }
 
-/// Traces `f` applied to `model` rebuilt with symbolic uniforms. The traced function's first
-/// argument is the uniforms struct (named `uniforms`, of the struct type
-/// [`UniformBlock::NAME`]), followed by `extra`; `f` receives the traced model and the inputs
-/// of `extra` (flattened as [`Signature`] describes).
+/// How traced shader code receives a model's uniforms.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UniformsIn {
+    /// The first argument, `uniforms: <Name>`: one shader for every parameter set, the
+    /// values supplied by the caller.
+    Argument,
+    /// A module-scope constant `uniforms` of the model's values rounded to `f32`, read by
+    /// name (the shader compiler folds it): the shader of one parameter set.
+    Constant,
+}
+
+/// Traces `f` applied to `model` rebuilt with symbolic uniforms, which the traced function
+/// receives as `uniforms` (of the struct type [`UniformBlock::NAME`]): its first argument or
+/// a module constant ([`UniformsIn`]). The arguments `extra` follow; `f` receives the traced
+/// model and the inputs of `extra` (flattened as [`Signature`] describes).
 pub fn trace_model<M: Model>(
     model: &M,
+    uniforms: UniformsIn,
     extra: Vec<Parameter>,
     result: ResultType,
     f: impl FnOnce(&M::In<Traced>, &[Traced]) -> Vec<Traced>,
 ) -> Graph {
-    let mut parameters = vec![Parameter {
-        name: "uniforms".into(),
-        ty: <M::Uniforms<Traced> as UniformBlock<Traced>>::shader_type(),
-    }];
+    let ty = <M::Uniforms<Traced> as UniformBlock<Traced>>::shader_type();
+    let width = ty.width();
+    let mut block = Parameter::argument("uniforms", ty);
+    if uniforms == UniformsIn::Constant {
+        let values = model.uniforms().to_values();
+        block.constant = Some(values.into_iter().map(|v| v as f32).collect());
+    }
+    let mut parameters = vec![block];
     parameters.extend(extra);
-    let width = <M::Uniforms<Traced> as UniformBlock<Traced>>::shader_type().width();
     let signature = Signature { parameters, result };
     trace_with(signature, |x| {
         let traced = model.with_uniforms(M::Uniforms::<Traced>::from_values(&x[..width]));
@@ -333,16 +348,19 @@ pub fn query_parameters(uses_offset: bool) -> Vec<Parameter> {
         Parameter {
             name: "wi".into(),
             ty: ArgType::Vec3,
+            constant: None,
         },
         Parameter {
             name: "wo".into(),
             ty: ArgType::Vec3,
+            constant: None,
         },
     ];
     if uses_offset {
         p.push(Parameter {
             name: "h".into(),
             ty: ArgType::Scalar,
+            constant: None,
         });
     }
     p
@@ -361,8 +379,15 @@ pub fn query_of<R: Real>(x: &[R]) -> Query<R> {
 /// The model's [`Bcsdf::eval`] as a shader function
 /// `(uniforms: <Uniforms>, wi: vec3<f32>, wo: vec3<f32>[, h: f32]) -> vec3<f32>`.
 pub fn trace_eval<M: Model>(model: &M) -> Graph {
+    trace_eval_with(model, UniformsIn::Argument)
+}
+
+/// The model's [`Bcsdf::eval`] as a shader function `(wi: vec3<f32>, wo: vec3<f32>[, h: f32])
+/// -> vec3<f32>` reading its uniforms as received by `uniforms` ([`trace_model`]).
+pub fn trace_eval_with<M: Model>(model: &M, uniforms: UniformsIn) -> Graph {
     trace_model(
         model,
+        uniforms,
         query_parameters(model.uses_offset()),
         ResultType::Vec3,
         |m, x| m.eval(&query_of(x)).to_vec(),

@@ -300,6 +300,8 @@ impl OpCounts {
                 | Node::LessEqual(..)
                 | Node::Select(..) => counts.select += 1,
                 Node::Input(_)
+                | Node::Global(_)
+                | Node::Result { .. }
                 | Node::Const(_)
                 | Node::And(..)
                 | Node::Or(..)

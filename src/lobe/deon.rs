@@ -1,5 +1,5 @@
 use super::bessel::i0e_split;
-use crate::real::Real;
+use crate::real::{Real, ShaderFunction};
 
 /// d'Eon et al. 2011's energy-conserving longitudinal lobe (their eq. 7; pbrt-v4 `Mp`):
 ///
@@ -43,16 +43,24 @@ impl<R: Real> DeonLobe<R> {
     /// `M(theta_i; theta_o)` from the sines and (non-negative) cosines of both angles.
     #[inline(always)]
     pub fn eval(&self, sin_i: R, cos_i: R, sin_o: R, cos_o: R) -> R {
-        let one = R::c(1.0);
-        let cos_sum = cos_i * cos_o - sin_i * sin_o;
-        let sin_sum = sin_i * cos_o + cos_i * sin_o;
-        let one_minus_cos = R::select(
-            R::c(0.0).lt(cos_sum),
-            sin_sum * sin_sum / (one + cos_sum.max(R::c(0.0))),
-            one - cos_sum,
+        const FUNCTION: ShaderFunction = crate::shader_function!(
+            deon_lobe,
+            "d'Eon et al. 2011, eq. 7",
+            [sin_i, cos_i, sin_o, cos_o]
         );
-        let (scale, shift) = i0e_split(cos_i * cos_o * self.inv_v);
-        self.norm * scale * (shift - one_minus_cos * self.inv_v).exp()
+        let args = [sin_i, cos_i, sin_o, cos_o];
+        R::call(&FUNCTION, args, |[sin_i, cos_i, sin_o, cos_o]| {
+            let one = R::c(1.0);
+            let cos_sum = cos_i * cos_o - sin_i * sin_o;
+            let sin_sum = sin_i * cos_o + cos_i * sin_o;
+            let one_minus_cos = R::select(
+                R::c(0.0).lt(cos_sum),
+                sin_sum * sin_sum / (one + cos_sum.max(R::c(0.0))),
+                one - cos_sum,
+            );
+            let (scale, shift) = i0e_split(cos_i * cos_o * self.inv_v);
+            [self.norm * scale * (shift - one_minus_cos * self.inv_v).exp()]
+        })[0]
     }
 }
 

@@ -1,5 +1,5 @@
 use crate::error::ParamError;
-use crate::real::Real;
+use crate::real::{Real, ShaderFunction};
 
 /// The Henyey-Greenstein function exactly as Gerard prints it (his eq. 6):
 /// `G = (1 / 4 pi) (1 - g^2) / (1 + g^2 - 2 g cos theta)^(3/2)`.
@@ -57,9 +57,16 @@ impl HenyeyGreenstein {
 
     /// `M(theta)` for theta given by its cosine.
     pub fn eval<R: Real>(&self, cos_theta: R) -> R {
-        let g = R::c(self.g);
-        let d = R::c(1.0) + g * g - R::c(2.0) * g * cos_theta;
-        R::c((1.0 - self.g * self.g) * self.inverse_norm) / (d * d.sqrt())
+        const FUNCTION: ShaderFunction = crate::shader_function!(
+            henyey_greenstein,
+            "Henyey and Greenstein 1941, normalised on the hair's circle (Gerard et al. 2023)",
+            [cos_theta]
+        );
+        R::call(&FUNCTION, [cos_theta], |[cos_theta]| {
+            let g = R::c(self.g);
+            let d = R::c(1.0) + g * g - R::c(2.0) * g * cos_theta;
+            [R::c((1.0 - self.g * self.g) * self.inverse_norm) / (d * d.sqrt())]
+        })[0]
     }
 }
 

@@ -10,7 +10,7 @@
 use super::constants::{FROSTBITE_TRT_OFFSET_H, FROSTBITE_TT_OFFSET_H};
 use crate::absorption::PathLength;
 use crate::azimuthal::attenuations_at_offset;
-use crate::real::{pi, Real};
+use crate::real::{pi, Real, ShaderFunction};
 
 /// Frostbite's per-slice model of the TT distribution (slide 19): `a exp(-b (|phi| - pi)^2)`,
 /// with the height `a` and the sharpness `b` (rad^-2) looked up per (theta_o, beta_n) in the
@@ -22,7 +22,11 @@ use crate::real::{pi, Real};
 /// phi in [0, pi] relative to each slice's peak): 1.48e-2 on average over the 9 x 10 slices,
 /// 4.84e-2 at worst (theta_o = 80 deg, beta_n = 0.1).
 pub fn tt_gaussian<R: Real>(phi: R, a: R, b: R) -> R {
-    a * (-b * (phi.abs() - pi::<R>()).sqr()).exp()
+    const FUNCTION: ShaderFunction =
+        crate::shader_function!(tt_gaussian, "Tafuri 2019, slide 19", [phi, a, b]);
+    R::call(&FUNCTION, [phi, a, b], |[phi, a, b]| {
+        [a * (-b * (phi.abs() - pi::<R>()).sqr()).exp()]
+    })[0]
 }
 
 /// A transmitted lobe whose attenuation Frostbite evaluates at a single offset.

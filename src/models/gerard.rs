@@ -2,7 +2,7 @@
 //! as closed forms in the lobe width, and the absorption exponents of his TT and TRT lobes.
 
 use super::constants::{GERARD_HG_G_LITERAL_POLYNOMIAL, HG_G_NORMALISED_POLYNOMIAL};
-use crate::real::{horner, Real};
+use crate::real::{horner, Real, ShaderFunction};
 
 /// Domain of the g(beta) closed forms [`gerard_hg_g`] and [`hg_g_normalised`], radians: 1 to
 /// 45 degrees. Widths outside it are clamped.
@@ -40,8 +40,18 @@ pub fn hg_g_normalised<R: Real>(beta: R) -> R {
 }
 
 fn g_polynomial<R: Real>(beta: R, coefficients: &[f64]) -> R {
-    let (lo, hi) = HG_G_BETA_DOMAIN;
-    horner(beta.max(R::c(lo)).min(R::c(hi)).sqrt(), coefficients)
+    const FUNCTION: ShaderFunction = crate::shader_function!(
+        hg_asymmetry,
+        "Gerard et al. 2023, g(beta) as a polynomial in sqrt(beta)",
+        [beta]
+    );
+    R::call(&FUNCTION, [beta], |[beta]| {
+        let (lo, hi) = HG_G_BETA_DOMAIN;
+        [horner(
+            beta.max(R::c(lo)).min(R::c(hi)).sqrt(),
+            coefficients,
+        )]
+    })[0]
 }
 
 /// Gerard's absorption exponent of the TT lobe, `e^(-4 sigma_a)` (his eqs. 8 and 12): k = 4,

@@ -7,7 +7,7 @@
 //! `hairmath::fit::karis`; the errors quoted here are its measurements at eta = 1.55.
 
 use super::constants::{KARIS_D_TRT, KARIS_D_TT, KARIS_ETA_PRIME, KARIS_H_TT};
-use crate::real::Real;
+use crate::real::{Real, ShaderFunction};
 
 /// The coefficients `(a, b)` of Karis' Bravais index `eta' ~ a / cos theta_d + b cos theta_d`
 /// ([`scaled_eta_prime_karis`], [`inverse_eta_prime_karis`]).
@@ -117,7 +117,14 @@ impl From<[f64; 2]> for HTtCoefficients {
 /// positive, or use [`inverse_eta_prime_karis`]. The relative error is that of eta' (see
 /// [`EtaPrimeCoefficients::PUBLISHED`] and [`EtaPrimeCoefficients::REFIT`]).
 pub fn scaled_eta_prime_karis<R: Real>(cos_theta_d: R, c: EtaPrimeCoefficients) -> R {
-    R::c(c.a) + R::c(c.b) * cos_theta_d * cos_theta_d
+    const FUNCTION: ShaderFunction = crate::shader_function!(
+        scaled_eta_prime_karis,
+        "Karis 2016 (Bravais' index times cos theta_d)",
+        [cos_theta_d]
+    );
+    R::call(&FUNCTION, [cos_theta_d], |[cos_theta_d]| {
+        [R::c(c.a) + R::c(c.b) * cos_theta_d * cos_theta_d]
+    })[0]
 }
 
 /// `1 / eta'` of Karis' Bravais index ([`scaled_eta_prime_karis`]):
@@ -147,7 +154,11 @@ pub fn d_karis<R: Real>(phi: R, c: ExpCosCoefficients) -> R {
 /// [`d_karis`] from `cos phi` in [-1, 1], as `HairBsdf.ush` evaluates it (UE computes cos phi
 /// from the projected vectors and never phi itself): `exp(a cos phi + b)` (Karis 2016).
 pub fn d_karis_of_cos<R: Real>(cos_phi: R, c: ExpCosCoefficients) -> R {
-    (R::c(c.a) * cos_phi + R::c(c.b)).exp()
+    const FUNCTION: ShaderFunction =
+        crate::shader_function!(d_karis, "Karis 2016 (D ~ exp(a cos phi + b))", [cos_phi]);
+    R::call(&FUNCTION, [cos_phi], |[cos_phi]| {
+        [(R::c(c.a) * cos_phi + R::c(c.b)).exp()]
+    })[0]
 }
 
 /// Karis' TT offset `h_TT ~ (1 + a (c1 - c2 cos phi)) cos(phi/2)` (Karis 2016; `HairBsdf.ush`
@@ -165,5 +176,13 @@ pub fn h_tt_karis<R: Real>(a: R, phi: R, c: HTtCoefficients) -> R {
 /// [`h_tt_karis`] from `cos phi` and `cos(phi/2)` (in [-1, 1] and [0, 1]), as `HairBsdf.ush`
 /// evaluates it: `(1 + a (c1 - c2 cos phi)) cos(phi/2)` (Karis 2016).
 pub fn h_tt_karis_of_cos<R: Real>(a: R, cos_phi: R, cos_half_phi: R, c: HTtCoefficients) -> R {
-    (R::c(1.0) + a * (R::c(c.c1) - R::c(c.c2) * cos_phi)) * cos_half_phi
+    const FUNCTION: ShaderFunction = crate::shader_function!(
+        h_tt_karis,
+        "Karis 2016 (h_TT ~ (1 + a (c1 - c2 cos phi)) cos(phi/2))",
+        [a, cos_phi, cos_half_phi]
+    );
+    let args = [a, cos_phi, cos_half_phi];
+    R::call(&FUNCTION, args, |[a, cos_phi, cos_half_phi]| {
+        [(R::c(1.0) + a * (R::c(c.c1) - R::c(c.c2) * cos_phi)) * cos_half_phi]
+    })[0]
 }

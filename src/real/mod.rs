@@ -19,6 +19,7 @@
 //! [`crate::lut::Table::lookup_into`] in every instantiation.
 
 mod simd;
+mod structure;
 mod traced;
 
 use core::fmt::Debug;
@@ -27,6 +28,9 @@ use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Su
 use crate::lut::SharedTable;
 
 pub use simd::BatchReal;
+pub use structure::{
+    Body, CallKind, CallSite, ConstArray, Function, FunctionKind, ShaderFunction, ShaderLoop, Shape,
+};
 pub use traced::{
     trace, trace_with, ArgType, Binary, Graph, Node, Parameter, ResultType, Signature, StructType,
     Traced, TracedMask, Unary, NO_COORDINATE, TEXTURE_CHANNELS,
@@ -103,6 +107,44 @@ pub trait Real:
         table: &SharedTable<D, C>,
         coords: [Self; D],
     ) -> [Self; C];
+
+    /// `body(args)`, marked as the shader function `function`: the `f32`, `f64` and SIMD
+    /// instantiations just call `body`; the tracer records `body` once as a named function
+    /// of the graph ([`Graph::functions`]) and here a call of it, so the emitted shader calls
+    /// a function where the Rust code calls one. `args` are the scalars of
+    /// `function.parameters` in order (a `Vec3` parameter as x, y, z). Values of the caller
+    /// that `body` uses besides `args` become further parameters of the shader function.
+    ///
+    /// # Panics
+    /// Traced: if `function.parameters` do not have `N` scalars.
+    #[inline(always)]
+    fn call<const N: usize, const M: usize>(
+        function: &'static ShaderFunction,
+        args: [Self; N],
+        body: impl FnOnce([Self; N]) -> [Self; M],
+    ) -> [Self; M] {
+        let _ = function;
+        body(args)
+    }
+
+    /// `state = body(state, element)` for each of `elements` in order, from `init`; marked
+    /// as the loop `info`: the tracer records `body` once as a function of the graph and the
+    /// elements as a constant array ([`Graph::arrays`]), so the emitted shader loops over a
+    /// `const` array instead of unrolling.
+    ///
+    /// # Panics
+    /// Traced: if the elements are not constants (values of [`Real::c`]), or `info` does
+    /// not name `E` fields and `S` state scalars.
+    #[inline(always)]
+    fn fold<const S: usize, const E: usize>(
+        info: &'static ShaderLoop,
+        elements: &[[Self; E]],
+        init: [Self; S],
+        body: impl Fn([Self; S], [Self; E]) -> [Self; S],
+    ) -> [Self; S] {
+        let _ = info;
+        elements.iter().fold(init, |state, e| body(state, *e))
+    }
 
     /// `self > other`.
     fn gt(self, other: Self) -> Self::Mask {

@@ -23,6 +23,10 @@
 //! Using a [`Traced`] value outside the trace that made it (after it ended, or inside another
 //! one) panics with a message saying so, rather than recording a wrong graph.
 
+use super::structure::{
+    flatten, Body, CallKind, CallSite, ConstArray, Function, FunctionKind, ShaderFunction,
+    ShaderLoop,
+};
 use super::Real;
 use crate::lut::{SharedTable, Table, MAX_AXES, MAX_CHANNELS};
 use core::cell::RefCell;
@@ -113,6 +117,16 @@ pub enum Node {
         /// The channel read.
         channel: u32,
     },
+    /// Scalar `k` of the graph's baked constants ([`Graph::globals`]): the scalars of the
+    /// signature's constant parameters ([`Parameter::constant`]), in signature order.
+    Global(u32),
+    /// Output `output` of call site `site` of the body's [`Body::calls`].
+    Result {
+        /// The index of the call site in [`Body::calls`].
+        site: u32,
+        /// Which output of the callee.
+        output: u32,
+    },
 }
 
 /// The shader type of one argument (or struct field) of a traced function.
@@ -136,16 +150,31 @@ pub struct StructType {
 }
 
 /// One named argument of a traced function.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Parameter {
     /// The argument's name in shader code.
     pub name: String,
     /// Its type.
     pub ty: ArgType,
+    /// `Some(values)`, one per scalar of `ty`: the parameter is not an argument but a
+    /// module-scope constant of these values, which the traced closure reads as
+    /// [`Node::Global`]s ([`Graph::globals`]) and shader code by name. `None`: an argument.
+    pub constant: Option<Vec<f32>>,
+}
+
+impl Parameter {
+    /// An argument named `name` of type `ty`.
+    pub fn argument(name: &str, ty: ArgType) -> Self {
+        Parameter {
+            name: name.to_string(),
+            ty,
+            constant: None,
+        }
+    }
 }
 
 /// What a traced function returns.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ResultType {
     /// `f32` for one output, `array<f32, N>` for N outputs.
     Scalars,
@@ -156,7 +185,7 @@ pub enum ResultType {
 /// The arguments and result of a traced function. The closure of [`trace_with`] receives one
 /// [`Traced`] input per scalar: the arguments in order, a vector as its x, y, z, a struct as
 /// its fields in order (recursively).
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Signature {
     /// The arguments, in order.
     pub parameters: Vec<Parameter>,
@@ -218,59 +247,248 @@ impl Signature {
     pub fn scalars(count: usize) -> Self {
         Signature {
             parameters: (0..count)
-                .map(|i| Parameter {
-                    name: format!("x{i}"),
-                    ty: ArgType::Scalar,
-                })
+                .map(|i| Parameter::argument(&format!("x{i}"), ArgType::Scalar))
                 .collect(),
             result: ResultType::Scalars,
         }
     }
 
-    /// Number of scalar inputs of the traced closure.
+    /// Number of scalar inputs of the traced closure: the scalars of every parameter,
+    /// arguments and constants.
     pub fn input_count(&self) -> usize {
         self.parameters.iter().map(|p| p.ty.width()).sum()
     }
 
-    /// The shader expression of each scalar input, in input order (`wi.x`, `uniforms.eta`).
-    fn input_paths(&self) -> Vec<String> {
-        let mut out = Vec::with_capacity(self.input_count());
+    /// Number of scalars of the arguments (the parameters that are not constants): the
+    /// inputs of [`Graph::eval_f32`].
+    pub fn argument_count(&self) -> usize {
+        self.parameters
+            .iter()
+            .filter(|p| p.constant.is_none())
+            .map(|p| p.ty.width())
+            .sum()
+    }
+
+    /// The shader expressions of the scalars of the arguments ([`Node::Input`] order) and of
+    /// the constant parameters ([`Node::Global`] order): `wi.x`, `uniforms.eta`.
+    fn input_paths(&self) -> (Vec<String>, Vec<String>) {
+        let (mut arguments, mut constants) = (Vec::new(), Vec::new());
         for p in &self.parameters {
-            p.ty.scalar_paths(&p.name, &mut out);
+            let out = if p.constant.is_some() {
+                &mut constants
+            } else {
+                &mut arguments
+            };
+            p.ty.scalar_paths(&p.name, out);
         }
-        out
+        (arguments, constants)
     }
 }
 
-/// A recorded computation: nodes in evaluation order, the signature of the traced function,
-/// and the outputs.
+/// A recorded computation: the structured top-level body with the functions and constant
+/// arrays it uses ([`Graph::body`], [`Graph::functions`], [`Graph::arrays`]), the same
+/// computation flattened ([`Graph::nodes`]: every call inlined, every loop unrolled), the
+/// signature of the traced function, the baked constants and the tables.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Graph {
+    /// The flattened computation: what [`Graph::eval_f32`] interprets and the counts count.
     nodes: Vec<Node>,
-    signature: Signature,
     outputs: Vec<u32>,
+    body: Body,
+    functions: Vec<Function>,
+    arrays: Vec<ConstArray>,
+    signature: Signature,
+    globals: Vec<f32>,
     tables: Vec<Arc<Table>>,
 }
 
-struct Recorder {
-    /// Distinguishes the values of this trace from those of earlier ones.
+/// The body being recorded at one level of calls.
+struct Frame {
+    /// Distinguishes the values of this frame from those of every other frame and trace.
     trace: u32,
-    nodes: Vec<Node>,
+    body: Body,
     index: HashMap<Node, u32>,
+    call_index: HashMap<CallSite, u32>,
+    /// Explicit scalar parameters (the captures follow them).
+    inputs: u32,
+    /// The captured values: nodes of the enclosing frame, in parameter order.
+    captures: Vec<u32>,
+    /// Captured node of the enclosing frame -> its input node here.
+    capture_index: HashMap<u32, u32>,
+}
+
+impl Frame {
+    fn new(inputs: u32) -> Self {
+        Frame {
+            trace: next_trace_id(),
+            body: Body::default(),
+            index: HashMap::new(),
+            call_index: HashMap::new(),
+            inputs,
+            captures: Vec::new(),
+            capture_index: HashMap::new(),
+        }
+    }
+
+    /// The index of `node` in this frame, recorded if new.
+    fn intern(&mut self, node: Node) -> u32 {
+        if let Some(&id) = self.index.get(&node) {
+            return id;
+        }
+        let id = self.body.nodes.len() as u32;
+        self.body.nodes.push(node);
+        self.index.insert(node, id);
+        id
+    }
+
+    /// The index of `site` in this frame's calls, added if new.
+    fn intern_call(&mut self, site: CallSite) -> u32 {
+        if let Some(&id) = self.call_index.get(&site) {
+            return id;
+        }
+        let id = self.body.calls.len() as u32;
+        self.body.calls.push(site.clone());
+        self.call_index.insert(site, id);
+        id
+    }
+}
+
+/// The running trace: a stack of frames (the top-level function first, then one per call
+/// being traced) and what they share.
+struct Recorder {
+    frames: Vec<Frame>,
+    functions: Vec<Function>,
+    arrays: Vec<ConstArray>,
     /// The tables fetched from, each once (by pointer).
     tables: Vec<Arc<Table>>,
 }
 
-/// The index of `table` among the tables of the running trace, added if new, and the trace.
+impl Recorder {
+    fn top(&mut self) -> &mut Frame {
+        self.frames
+            .last_mut()
+            .expect("a trace has a top-level frame")
+    }
+
+    /// The index in frame `level` of the value `node` of the frame `trace`: the node itself,
+    /// or, for a value of an enclosing frame, a capture (literal constants are recorded
+    /// again).
+    ///
+    /// # Panics
+    /// If `trace` is no frame of this recorder.
+    fn localize(&mut self, level: usize, node: u32, trace: u32) -> u32 {
+        if self.frames[level].trace == trace {
+            return node;
+        }
+        assert!(
+            level > 0,
+            "a Traced value from another trace was used (traced values live only inside the \
+             closure of the trace that made them)"
+        );
+        let outer = self.localize(level - 1, node, trace);
+        let outer_node = self.frames[level - 1].body.nodes[outer as usize];
+        let frame = &mut self.frames[level];
+        // Literals are written again; everything else (baked uniforms included) is passed,
+        // so that a function called with different uniforms is one function.
+        if matches!(outer_node, Node::Const(_)) {
+            return frame.intern(outer_node);
+        }
+        if let Some(&local) = frame.capture_index.get(&outer) {
+            return local;
+        }
+        let parameter = frame.inputs + frame.captures.len() as u32;
+        frame.captures.push(outer);
+        let local = frame.intern(Node::Input(parameter));
+        frame.capture_index.insert(outer, local);
+        local
+    }
+
+    /// Records `node`, whose operands (in [`map_operands`] order) are values of the frames
+    /// `traces`, in the top frame.
+    fn record(&mut self, node: Node, traces: &[u32]) -> (u32, u32) {
+        let level = self.frames.len() - 1;
+        let mut k = 0;
+        let node = map_operands(node, |id| {
+            let local = self.localize(level, id, traces[k]);
+            k += 1;
+            local
+        });
+        let frame = self.top();
+        (frame.intern(node), frame.trace)
+    }
+
+    /// The index of a traced body as a function of the graph: an equal earlier function, or
+    /// a new one named after `kind` (with `_2`, `_3`, ... for a differing body of that name).
+    fn add_function(&mut self, kind: FunctionKind, body: Body, inputs: u32, captures: u32) -> u32 {
+        let same = |f: &Function| {
+            f.kind == kind && f.body == body && f.inputs == inputs && f.captures == captures
+        };
+        if let Some(k) = self.functions.iter().position(same) {
+            return k as u32;
+        }
+        let namesakes = self
+            .functions
+            .iter()
+            .filter(|f| f.kind.name() == kind.name())
+            .count();
+        let name = match namesakes {
+            0 => kind.name().to_string(),
+            n => format!("{}_{}", kind.name(), n + 1),
+        };
+        self.functions.push(Function {
+            name,
+            kind,
+            body,
+            inputs,
+            captures,
+        });
+        (self.functions.len() - 1) as u32
+    }
+
+    /// The index of the constant array of `info` with `elements`, added if new.
+    fn add_array(&mut self, info: &'static ShaderLoop, elements: Vec<Vec<f32>>) -> u32 {
+        let array = ConstArray { info, elements };
+        let k = match self.arrays.iter().position(|a| *a == array) {
+            Some(k) => k,
+            None => {
+                self.arrays.push(array);
+                self.arrays.len() - 1
+            }
+        };
+        k as u32
+    }
+}
+
+/// A new identifier for a trace or a frame.
+fn next_trace_id() -> u32 {
+    TRACES.with(|t| {
+        let id = t.get().wrapping_add(1);
+        t.set(id);
+        id
+    })
+}
+
+/// Runs `f` on the running trace.
 ///
 /// # Panics
 /// If no trace is running.
-fn register_table(table: &Arc<Table>) -> (u32, u32) {
+fn with_recorder<T>(f: impl FnOnce(&mut Recorder) -> T) -> T {
     RECORDER.with(|r| {
         let mut guard = r.borrow_mut();
-        let rec = guard
-            .as_mut()
-            .expect("a table was fetched with Traced coordinates outside hairmath::real::trace");
+        let rec = guard.as_mut().expect(
+            "a Traced value was used outside hairmath::real::trace (traced values live only \
+             inside the closure of the trace that made them)",
+        );
+        f(rec)
+    })
+}
+
+/// The index of `table` among the tables of the running trace, added if new.
+///
+/// # Panics
+/// If no trace is running.
+fn register_table(table: &Arc<Table>) -> u32 {
+    with_recorder(|rec| {
         let id = match rec.tables.iter().position(|t| Arc::ptr_eq(t, table)) {
             Some(id) => id,
             None => {
@@ -278,7 +496,7 @@ fn register_table(table: &Arc<Table>) -> (u32, u32) {
                 rec.tables.len() - 1
             }
         };
-        (id as u32, rec.trace)
+        id as u32
     })
 }
 
@@ -287,30 +505,72 @@ thread_local! {
     static TRACES: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
 }
 
-/// Records `node`, whose operands are values of the traces `operands`, in the running trace;
-/// returns its index.
+/// Records `node`, whose operands (in [`map_operands`] order) are values of the frames
+/// `traces`, in the running trace's top frame; returns its index and the frame.
 ///
 /// # Panics
 /// If no trace is running, or an operand comes from another trace.
-fn record(node: Node, operands: &[u32]) -> (u32, u32) {
-    RECORDER.with(|r| {
-        let mut guard = r.borrow_mut();
-        let rec = guard.as_mut().expect(
-            "a Traced value was used outside hairmath::real::trace (traced values live only \
-             inside the closure of the trace that made them)",
-        );
-        assert!(
-            operands.iter().all(|&t| t == rec.trace),
-            "a Traced value from another trace was used (traced values live only inside the \
-             closure of the trace that made them)"
-        );
-        if let Some(&id) = rec.index.get(&node) {
-            return (id, rec.trace);
+fn record(node: Node, traces: &[u32]) -> (u32, u32) {
+    with_recorder(|rec| rec.record(node, traces))
+}
+
+/// Traces `body` called with `inputs` as a function of the running trace (see
+/// [`Real::call`] and [`Real::fold`]): records it in a new frame whose first `inputs.len()`
+/// inputs are `inputs`, makes it a function of the graph and records the call site
+/// `site(function, captures)` in the calling frame; returns the site's outputs.
+fn record_call(
+    kind: FunctionKind,
+    inputs: usize,
+    body: impl FnOnce(&[Traced]) -> Vec<Traced>,
+    site: impl FnOnce(u32, Vec<u32>) -> CallSite,
+) -> Vec<Traced> {
+    let args: Vec<Traced> = with_recorder(|rec| {
+        rec.frames.push(Frame::new(inputs as u32));
+        (0..inputs)
+            .map(|k| Traced::from_record(rec.record(Node::Input(k as u32), &[])))
+            .collect()
+    });
+    let outputs = body(&args);
+    with_recorder(|rec| {
+        let level = rec.frames.len() - 1;
+        let locals: Vec<u32> = outputs
+            .iter()
+            .map(|o| rec.localize(level, o.node, o.trace))
+            .collect();
+        let mut frame = rec.frames.pop().expect("the callee's frame");
+        frame.body.outputs = locals;
+        let captures = frame.captures.len() as u32;
+        let function = rec.add_function(kind, frame.body, inputs as u32, captures);
+        let caller = rec.top();
+        let s = caller.intern_call(site(function, frame.captures));
+        (0..outputs.len() as u32)
+            .map(|output| {
+                let node = Node::Result { site: s, output };
+                Traced::from_record((caller.intern(node), caller.trace))
+            })
+            .collect()
+    })
+}
+
+/// The nodes in the top frame of the values `values` (of enclosing frames or the top one).
+fn localize_in_top(values: &[Traced]) -> Vec<u32> {
+    with_recorder(|rec| {
+        let level = rec.frames.len() - 1;
+        values
+            .iter()
+            .map(|v| rec.localize(level, v.node, v.trace))
+            .collect()
+    })
+}
+
+/// The value of a constant node, if `x` is one.
+fn constant_value(x: Traced) -> Option<f32> {
+    with_recorder(|rec| {
+        let level = rec.frames.iter().position(|f| f.trace == x.trace)?;
+        match rec.frames[level].body.nodes[x.node as usize] {
+            Node::Const(bits) => Some(f32::from_bits(bits)),
+            _ => None,
         }
-        let id = rec.nodes.len() as u32;
-        rec.nodes.push(node);
-        rec.index.insert(node, id);
-        (id, rec.trace)
     })
 }
 
@@ -352,32 +612,29 @@ pub fn trace(inputs: usize, f: impl FnOnce(&[Traced]) -> Vec<Traced>) -> Graph {
     trace_with(Signature::scalars(inputs), f)
 }
 
-/// Traces `f` called with one symbolic input per scalar of `signature` and returns the
-/// recorded graph. If `f` panics, the trace is discarded and the panic continues.
+/// Traces `f` called with one symbolic input per scalar of `signature` (an argument's scalars
+/// as [`Node::Input`]s, a constant parameter's as [`Node::Global`]s) and returns the recorded
+/// graph. If `f` panics, the trace is discarded and the panic continues.
 ///
 /// # Panics
-/// If called while another trace is running on the same thread (traces do not nest), or if
-/// the result type is [`ResultType::Vec3`] and `f` does not return exactly three values.
+/// If called while another trace is running on the same thread (traces do not nest), if a
+/// constant parameter does not have one value per scalar, or if the result type is
+/// [`ResultType::Vec3`] and `f` does not return exactly three values.
 pub fn trace_with(signature: Signature, f: impl FnOnce(&[Traced]) -> Vec<Traced>) -> Graph {
-    let trace = TRACES.with(|t| {
-        let id = t.get().wrapping_add(1);
-        t.set(id);
-        id
-    });
+    let top = Frame::new(0);
+    let trace = top.trace;
     RECORDER.with(|r| {
         let mut guard = r.borrow_mut();
         assert!(guard.is_none(), "hairmath::real::trace does not nest");
         *guard = Some(Recorder {
-            trace,
-            nodes: Vec::new(),
-            index: HashMap::new(),
+            frames: vec![top],
+            functions: Vec::new(),
+            arrays: Vec::new(),
             tables: Vec::new(),
         });
     });
     let session = Session;
-    let args: Vec<Traced> = (0..signature.input_count())
-        .map(|i| Traced::from_record(record(Node::Input(i as u32), &[])))
-        .collect();
+    let (args, globals) = signature_inputs(&signature);
     let outputs = f(&args);
     let rec = RECORDER
         .with(|r| r.borrow_mut().take())
@@ -392,19 +649,97 @@ pub fn trace_with(signature: Signature, f: impl FnOnce(&[Traced]) -> Vec<Traced>
         outputs.iter().all(|t| t.trace == trace),
         "a traced function returned a value of another trace"
     );
+    let Recorder {
+        mut frames,
+        functions,
+        arrays,
+        tables,
+    } = rec;
+    let mut body = frames.pop().expect("the top-level frame").body;
+    body.outputs = outputs.iter().map(|t| t.node).collect();
+    let flat = flatten(
+        &body,
+        signature.argument_count() as u32,
+        &functions,
+        &arrays,
+    );
     Graph {
-        nodes: rec.nodes,
+        nodes: flat.nodes,
+        outputs: flat.outputs,
+        body,
+        functions,
+        arrays,
         signature,
-        outputs: outputs.iter().map(|t| t.node).collect(),
-        tables: rec.tables,
+        globals,
+        tables,
     }
 }
 
+/// The closure's inputs for `signature` (recorded in the running trace's top frame) and the
+/// values of its constant parameters.
+fn signature_inputs(signature: &Signature) -> (Vec<Traced>, Vec<f32>) {
+    let mut args = Vec::with_capacity(signature.input_count());
+    let mut globals = Vec::new();
+    let mut arguments = 0;
+    for p in &signature.parameters {
+        let width = p.ty.width();
+        let nodes: Vec<Node> = match &p.constant {
+            Some(values) => {
+                assert_eq!(
+                    values.len(),
+                    width,
+                    "constant parameter {} needs one value per scalar",
+                    p.name
+                );
+                let first = globals.len() as u32;
+                globals.extend_from_slice(values);
+                (0..width as u32).map(|k| Node::Global(first + k)).collect()
+            }
+            None => {
+                arguments += width as u32;
+                (arguments - width as u32..arguments)
+                    .map(Node::Input)
+                    .collect()
+            }
+        };
+        args.extend(
+            nodes
+                .into_iter()
+                .map(|n| Traced::from_record(record(n, &[]))),
+        );
+    }
+    (args, globals)
+}
+
 impl Graph {
-    /// The recorded nodes in evaluation order (live or not; see [`Graph::count_binary`] for
-    /// counts of what the outputs depend on).
+    /// The flattened computation's nodes in evaluation order, every call inlined and every
+    /// loop unrolled (live or not; see [`Graph::count_binary`] for counts of what the outputs
+    /// depend on).
     pub fn nodes(&self) -> &[Node] {
         &self.nodes
+    }
+
+    /// The structured top-level body: its nodes, the calls it makes
+    /// ([`Node::Result`] reads their outputs) and its outputs.
+    pub fn body(&self) -> &Body {
+        &self.body
+    }
+
+    /// The functions the bodies call, each once; a function calls only functions of lower
+    /// index.
+    pub fn functions(&self) -> &[Function] {
+        &self.functions
+    }
+
+    /// The constant arrays of the loops.
+    pub fn arrays(&self) -> &[ConstArray] {
+        &self.arrays
+    }
+
+    /// The values of the baked constants: the scalars of the signature's constant
+    /// parameters in order ([`Node::Global`]).
+    pub fn globals(&self) -> &[f32] {
+        &self.globals
     }
 
     /// The signature of the traced function.
@@ -412,9 +747,10 @@ impl Graph {
         &self.signature
     }
 
-    /// Number of scalar inputs of the traced function.
+    /// Number of scalar arguments of the traced function ([`Signature::argument_count`]):
+    /// the inputs of [`Graph::eval_f32`].
     pub fn input_count(&self) -> usize {
-        self.signature.input_count()
+        self.signature.argument_count()
     }
 
     /// Number of outputs of the traced function.
@@ -531,6 +867,8 @@ impl Graph {
             match *node {
                 Node::Input(k) => value[i] = inputs[k as usize],
                 Node::Const(bits) => value[i] = f32::from_bits(bits),
+                Node::Global(k) => value[i] = self.globals[k as usize],
+                Node::Result { .. } => unreachable!("the flat graph has no calls"),
                 Node::Unary(op, a) => value[i] = apply_unary(op, v(a)),
                 Node::Binary(op, a, c) => value[i] = apply_binary(op, v(a), v(c)),
                 Node::Less(a, c) => truth[i] = Real::lt(v(a), v(c)),
@@ -589,7 +927,7 @@ impl Graph {
     /// bit for bit.)
     pub fn to_wgsl(&self, name: &str) -> String {
         let live = self.live();
-        let paths = self.signature.input_paths();
+        let (paths, _) = self.signature.input_paths();
         let mut out = String::new();
         self.texture_declarations(&mut out);
         let mut seen = Vec::new();
@@ -600,6 +938,7 @@ impl Graph {
             .signature
             .parameters
             .iter()
+            .filter(|p| p.constant.is_none())
             .map(|p| format!("{}: {}", p.name, p.ty.wgsl()))
             .collect();
         let ret = match (self.signature.result, self.outputs.len()) {
@@ -611,7 +950,7 @@ impl Graph {
         // The texture sample of each (table, coordinates, texture) already printed.
         let mut samples: HashMap<(u32, [u32; MAX_AXES], u32), usize> = HashMap::new();
         for (i, node) in self.nodes.iter().enumerate() {
-            if !live[i] || matches!(node, Node::Input(_) | Node::Const(_)) {
+            if !live[i] || matches!(node, Node::Input(_) | Node::Const(_) | Node::Global(_)) {
                 continue;
             }
             if let Node::Fetch {
@@ -757,6 +1096,7 @@ impl Graph {
     fn operand(&self, id: u32, paths: &[String]) -> String {
         match self.nodes[id as usize] {
             Node::Input(k) => paths[k as usize].clone(),
+            Node::Global(k) => wgsl_literal(self.globals[k as usize]),
             Node::Const(bits) => wgsl_literal(f32::from_bits(bits)),
             _ => format!("t{id}"),
         }
@@ -765,7 +1105,8 @@ impl Graph {
     fn expression(&self, node: &Node, paths: &[String]) -> String {
         let o = |k: u32| self.operand(k, paths);
         match *node {
-            Node::Input(_) | Node::Const(_) => unreachable!("inlined"),
+            Node::Input(_) | Node::Const(_) | Node::Global(_) => unreachable!("inlined"),
+            Node::Result { .. } => unreachable!("the flat graph has no calls"),
             Node::Unary(Unary::Neg, a) => format!("-{}", o(a)),
             Node::Unary(op, a) => format!("{}({})", unary_name(op), o(a)),
             Node::Binary(op, a, b) => match binary_symbol(op) {
@@ -784,16 +1125,56 @@ impl Graph {
 }
 
 fn operands(node: &Node) -> Vec<u32> {
-    match *node {
-        Node::Input(_) | Node::Const(_) => vec![],
-        Node::Unary(_, a) | Node::Not(a) => vec![a],
-        Node::Binary(_, a, b)
-        | Node::Less(a, b)
-        | Node::LessEqual(a, b)
-        | Node::And(a, b)
-        | Node::Or(a, b) => vec![a, b],
-        Node::Select(m, t, f) => vec![m, t, f],
-        Node::Fetch { coords, .. } => coords.into_iter().filter(|&c| c != NO_COORDINATE).collect(),
+    let mut out = Vec::new();
+    map_operands(*node, |k| {
+        out.push(k);
+        k
+    });
+    out
+}
+
+/// `node` with each operand `k` replaced by `f(k)`, called in operand order (a fetch's
+/// coordinates, the other nodes' operands left to right; [`Node::Result`] has none: its call
+/// site's arguments are the operands of the call).
+pub(super) fn map_operands(node: Node, mut f: impl FnMut(u32) -> u32) -> Node {
+    match node {
+        Node::Input(_) | Node::Const(_) | Node::Global(_) | Node::Result { .. } => node,
+        Node::Unary(op, a) => Node::Unary(op, f(a)),
+        Node::Not(a) => Node::Not(f(a)),
+        Node::Binary(op, a, b) => {
+            let a = f(a);
+            Node::Binary(op, a, f(b))
+        }
+        Node::Less(a, b) => {
+            let a = f(a);
+            Node::Less(a, f(b))
+        }
+        Node::LessEqual(a, b) => {
+            let a = f(a);
+            Node::LessEqual(a, f(b))
+        }
+        Node::And(a, b) => {
+            let a = f(a);
+            Node::And(a, f(b))
+        }
+        Node::Or(a, b) => {
+            let a = f(a);
+            Node::Or(a, f(b))
+        }
+        Node::Select(m, t, e) => {
+            let m = f(m);
+            let t = f(t);
+            Node::Select(m, t, f(e))
+        }
+        Node::Fetch {
+            table,
+            coords,
+            channel,
+        } => Node::Fetch {
+            table,
+            coords: coords.map(|c| if c == NO_COORDINATE { c } else { f(c) }),
+            channel,
+        },
     }
 }
 
@@ -1003,11 +1384,11 @@ impl Real for Traced {
         table: &SharedTable<D, C>,
         coords: [Self; D],
     ) -> [Self; C] {
-        let (id, trace) = register_table(table.arc());
+        let id = register_table(table.arc());
         let mut nodes = [NO_COORDINATE; MAX_AXES];
-        let mut traces = [trace; MAX_AXES];
+        let traces = coords.map(|x| x.trace);
         for (d, x) in coords.iter().enumerate() {
-            (nodes[d], traces[d]) = (x.node, x.trace);
+            nodes[d] = x.node;
         }
         core::array::from_fn(|channel| {
             let node = Node::Fetch {
@@ -1017,6 +1398,84 @@ impl Real for Traced {
             };
             Traced::from_record(record(node, &traces))
         })
+    }
+
+    fn call<const N: usize, const M: usize>(
+        function: &'static ShaderFunction,
+        args: [Self; N],
+        body: impl FnOnce([Self; N]) -> [Self; M],
+    ) -> [Self; M] {
+        assert_eq!(
+            function.input_count(),
+            N,
+            "shader function {} declares parameters of {} scalars but is called with {N}",
+            function.name,
+            function.input_count()
+        );
+        let explicit = localize_in_top(&args);
+        let outputs = record_call(
+            FunctionKind::Function(function),
+            N,
+            |inputs| body(core::array::from_fn(|k| inputs[k])).to_vec(),
+            |function, captures| CallSite {
+                function,
+                args: explicit.into_iter().chain(captures).collect(),
+                kind: CallKind::Call,
+            },
+        );
+        core::array::from_fn(|k| outputs[k])
+    }
+
+    fn fold<const S: usize, const E: usize>(
+        info: &'static ShaderLoop,
+        elements: &[[Self; E]],
+        init: [Self; S],
+        body: impl Fn([Self; S], [Self; E]) -> [Self; S],
+    ) -> [Self; S] {
+        assert!(
+            info.fields.len() == E && info.state.len() == S,
+            "loop {} names {} fields and {} state scalars but is called with {E} and {S}",
+            info.name,
+            info.fields.len(),
+            info.state.len()
+        );
+        if elements.is_empty() {
+            return init;
+        }
+        let values: Vec<Vec<f32>> = elements
+            .iter()
+            .map(|e| {
+                e.iter()
+                    .map(|&x| {
+                        constant_value(x).unwrap_or_else(|| {
+                            panic!(
+                                "the elements of the traced loop {} must be constants",
+                                info.name
+                            )
+                        })
+                    })
+                    .collect()
+            })
+            .collect();
+        let array = with_recorder(|rec| rec.add_array(info, values));
+        let init_nodes = localize_in_top(&init);
+        let outputs = record_call(
+            FunctionKind::LoopBody(info),
+            S + E,
+            |inputs| {
+                body(
+                    core::array::from_fn(|k| inputs[k]),
+                    core::array::from_fn(|k| inputs[S + k]),
+                )
+                .to_vec()
+            },
+            |function, captures| CallSite {
+                function,
+                args: init_nodes.into_iter().chain(captures).collect(),
+                kind: CallKind::Loop { array },
+            },
+        );
+        core::array::from_fn(|k| outputs[k])
     }
 }
 
@@ -1095,14 +1554,8 @@ mod tests {
         });
         let signature = Signature {
             parameters: vec![
-                Parameter {
-                    name: "m".into(),
-                    ty: uniforms,
-                },
-                Parameter {
-                    name: "wi".into(),
-                    ty: ArgType::Vec3,
-                },
+                Parameter::argument("m", uniforms),
+                Parameter::argument("wi", ArgType::Vec3),
             ],
             result: ResultType::Vec3,
         };

@@ -20,7 +20,7 @@ use hairmath::azimuthal::{FibrePath, Refraction, TrimmedLogistic};
 use hairmath::bcsdf::{
     query_of, query_parameters, trace_eval, trace_model, traced_inputs, Bcsdf, ChiangFarField,
     ChiangHair, ChiangUniforms, FarFieldRule, Model, Query, RandomNumbers, SampledBcsdf,
-    UniformBlock,
+    UniformBlock, UniformsIn,
 };
 use hairmath::fresnel::fresnel_from_outside;
 use hairmath::fresnel::{
@@ -118,7 +118,13 @@ macro_rules! model_case {
         let model = $model;
         let inputs: Vec<Vec<f32>> = $inputs;
         let width = model.uniforms().to_values().len();
-        let graph = trace_model(&model, $extra, $result, |$m, $x: &[Traced]| $body);
+        let graph = trace_model(
+            &model,
+            UniformsIn::Argument,
+            $extra,
+            $result,
+            |$m, $x: &[Traced]| $body,
+        );
         check(&$label, &inputs, &graph, |row: &[f32]| {
             let $m = &model.with_uniforms::<f32>(UniformBlock::from_values(&row[..width]));
             let $x = &row[width..];
@@ -384,15 +390,9 @@ fn numbers<R: Real>(x: &[R]) -> RandomNumbers<R> {
 }
 /// The sampling arguments: wo, h, then the four numbers.
 fn sample_parameters() -> Vec<Parameter> {
-    let mut p = vec![Parameter {
-        name: "wo".into(),
-        ty: ArgType::Vec3,
-    }];
+    let mut p = vec![Parameter::argument("wo", ArgType::Vec3)];
     for name in ["h", "lobe", "longitudinal", "cone", "offset"] {
-        p.push(Parameter {
-            name: name.into(),
-            ty: ArgType::Scalar,
-        });
+        p.push(Parameter::argument(name, ArgType::Scalar));
     }
     p
 }
@@ -613,6 +613,8 @@ mod classic;
 mod frostbite;
 /// The closed forms of the real-time models (`hairmath::models`).
 mod models;
+/// The structure the traces keep: functions, loops, baked uniforms.
+mod structure;
 /// Table fetches ([`Real::sample_table`]) and the models that read tables.
 mod tables;
 /// The Unreal models (`hairmath::models::{Karis, KarisRefit}`).
