@@ -2,17 +2,21 @@
 //! first), their calls and loops, and the top-level function.
 
 use super::builder::FnBuilder;
-use super::tables::TableHelper;
+use super::tables::{self, TableHelper};
 use super::types;
-use super::view::{constant_values, Body, CallKind, CallSite, FunctionKind, Node, Shape, View};
-use super::ShaderError;
+use super::{constant_values, ShaderError, TextureBinding};
+use crate::lut::Table;
 use crate::lut::MAX_AXES;
-use crate::real::{ArgType, Binary, ResultType, Unary};
+use crate::real::{
+    ArgType, Binary, Body, CallKind, CallSite, ConstArray, FunctionKind, Graph, Node, Parameter,
+    ResultType, Shape, Unary,
+};
 use naga::{
     BinaryOperator, Constant, Expression, Function, Handle, MathFunction, Module, Span, Statement,
     Type, UnaryOperator,
 };
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
+use std::sync::Arc;
 
 /// How the callee of a call returns its outputs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,7 +73,7 @@ pub(super) enum Source {
 }
 
 /// A lowered graph function.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 struct Lowered {
     handle: Handle<Function>,
     result: ResultKind,
@@ -133,12 +137,62 @@ fn operands(node: &Node) -> Vec<u32> {
     }
 }
 
-/// The lowering of one graph into one module.
-pub(super) struct Lowering<'a, 'g> {
+/// A top-level function of the module.
+#[derive(Clone, Debug)]
+pub(super) struct Top {
+    /// Its name.
+    pub name: String,
+    /// The naga function.
+    pub handle: Handle<Function>,
+    /// Its arguments (the signature's parameters that are not constants) and result.
+    pub signature: crate::real::Signature,
+    /// How it returns its outputs.
+    pub result: ResultKind,
+}
+
+/// What the graphs lowered into one module share: the module, and the tables, arrays,
+/// constants and functions already in it.
+#[derive(Default)]
+pub(super) struct Shared {
     pub module: Module,
-    view: &'a View<'g>,
+    /// The tables (one per `Arc`) and their helpers.
+    pub tables: Vec<(Arc<Table>, TableHelper)>,
+    pub bindings: Vec<TextureBinding>,
+    arrays: Vec<(ConstArray, ArrayConstant)>,
+    /// Constant parameters by name: type, values, the constant and its scalars' sources.
+    constants: Vec<(Parameter, Handle<Constant>, Vec<Source>)>,
+    /// Lowered functions by identity (name, kind and body with its references resolved).
+    functions: HashMap<String, Lowered>,
+    /// Every function name in the module.
+    pub names: HashSet<String>,
+    pub tops: Vec<Top>,
+    /// (shader function name, comment lines) in module order.
+    pub comments: Vec<(String, Vec<String>)>,
+}
+
+impl Shared {
+    /// `base`, or `base_2`, `base_3`, ... if taken; recorded as taken.
+    fn unique_name(&mut self, base: &str) -> String {
+        let mut name = base.to_string();
+        let mut n = 2;
+        while self.names.contains(&name) {
+            name = format!("{base}_{n}");
+            n += 1;
+        }
+        self.names.insert(name.clone());
+        name
+    }
+}
+
+/// The lowering of one graph into the shared module.
+pub(super) struct Lowering<'a> {
+    shared: &'a mut Shared,
+    view: &'a Graph,
+    /// Per table of the graph, its helper in the module.
     tables: Vec<TableHelper>,
+    /// Per array of the graph, its constant in the module.
     arrays: Vec<ArrayConstant>,
+    /// Per function of the graph, its naga function.
     functions: Vec<Option<Lowered>>,
     /// Per [`Node::Global`] scalar, where it is read.
     globals: Vec<Source>,
@@ -149,14 +203,41 @@ pub(super) struct Lowering<'a, 'g> {
     reachable: Vec<bool>,
 }
 
-impl<'a, 'g> Lowering<'a, 'g> {
-    /// Starts the lowering of `view`: the tables' textures and helpers are already in
-    /// `module` (`tables`).
-    pub fn new(module: Module, view: &'a View<'g>, tables: Vec<TableHelper>) -> Self {
+impl<'a> Lowering<'a> {
+    /// Starts the lowering of `view` into `shared`: its tables are found or declared.
+    pub fn new(shared: &'a mut Shared, view: &'a Graph) -> Self {
         let live: Vec<Liveness> = view.functions().iter().map(|f| liveness(&f.body)).collect();
         let top_live = liveness(view.body());
+        let tables = view
+            .tables()
+            .iter()
+            .map(|t| {
+                if let Some((_, helper)) = shared.tables.iter().find(|(u, _)| Arc::ptr_eq(u, t)) {
+                    return helper.clone();
+                }
+                let k = shared.tables.len();
+                let first = shared.bindings.len() as u32;
+                let (helper, bindings) = tables::declare_table(&mut shared.module, k, t, first);
+                let name = tables::table_name(k, t);
+                shared.names.insert(name.clone());
+                shared.comments.push((
+                    name,
+                    vec![format!(
+                        "table {k} ({}): {} axes, {} channels; multilinear interpolation of \
+                         texels read with textureLoad, in the operation order of \
+                         hairmath::lut::Table::lookup_into",
+                        t.meta().kind,
+                        t.axes().len(),
+                        t.channels().len()
+                    )],
+                ));
+                shared.bindings.extend(bindings);
+                shared.tables.push((Arc::clone(t), helper.clone()));
+                helper
+            })
+            .collect();
         let mut lowering = Lowering {
-            module,
+            shared,
             view,
             tables,
             arrays: Vec::new(),
@@ -223,8 +304,13 @@ impl<'a, 'g> Lowering<'a, 'g> {
         }
     }
 
-    /// Declares the signature's constant parameters as module-scope constants; returns the
-    /// sources of the [`Node::Global`] scalars.
+    /// Declares the signature's constant parameters as module-scope constants named after
+    /// the parameter (one constant per name: equal values are shared), and records where
+    /// the [`Node::Global`] scalars are read.
+    ///
+    /// # Errors
+    /// [`ShaderError::ConstantConflict`] for a constant of the name of an earlier one with
+    /// other values or another type.
     pub fn declare_constants(&mut self) -> Result<(), ShaderError> {
         let view = self.view;
         for p in &view.signature().parameters {
@@ -239,10 +325,24 @@ impl<'a, 'g> Lowering<'a, 'g> {
                     p.ty.width()
                 )));
             }
-            let ty = types::arg_type(&mut self.module, &p.ty);
+            if let Some((q, _, sources)) = self
+                .shared
+                .constants
+                .iter()
+                .find(|(q, _, _)| q.name == p.name)
+            {
+                if q != p {
+                    return Err(ShaderError::ConstantConflict {
+                        name: p.name.clone(),
+                    });
+                }
+                self.globals.extend(sources.iter().cloned());
+                continue;
+            }
+            let ty = types::arg_type(&mut self.shared.module, &p.ty);
             let mut values = values.iter();
             let init = self.constant_expression(&p.ty, &mut values);
-            let constant = self.module.constants.append(
+            let constant = self.shared.module.constants.append(
                 Constant {
                     name: Some(p.name.clone()),
                     ty,
@@ -252,12 +352,16 @@ impl<'a, 'g> Lowering<'a, 'g> {
             );
             let mut paths = Vec::new();
             scalar_paths(&p.ty, &mut Vec::new(), &mut paths);
-            self.globals
-                .extend(paths.into_iter().map(|(path, vector)| Source::Constant {
+            let sources: Vec<Source> = paths
+                .into_iter()
+                .map(|(path, vector)| Source::Constant {
                     constant,
                     path,
                     vector,
-                }));
+                })
+                .collect();
+            self.globals.extend(sources.iter().cloned());
+            self.shared.constants.push((p.clone(), constant, sources));
         }
         Ok(())
     }
@@ -268,7 +372,7 @@ impl<'a, 'g> Lowering<'a, 'g> {
         ty: &ArgType,
         values: &mut std::slice::Iter<'_, f32>,
     ) -> Handle<Expression> {
-        let mut global = |e: Expression| self_append(&mut self.module, e);
+        let mut global = |e: Expression| self_append(&mut self.shared.module, e);
         match ty {
             ArgType::Scalar => {
                 let v = *values.next().expect("one value per scalar");
@@ -281,8 +385,11 @@ impl<'a, 'g> Lowering<'a, 'g> {
                         global(Expression::Literal(naga::Literal::F32(v)))
                     })
                     .collect();
-                let ty = types::vec3(&mut self.module);
-                self_append(&mut self.module, Expression::Compose { ty, components })
+                let ty = types::vec3(&mut self.shared.module);
+                self_append(
+                    &mut self.shared.module,
+                    Expression::Compose { ty, components },
+                )
             }
             ArgType::Struct(s) => {
                 let components = s
@@ -290,8 +397,11 @@ impl<'a, 'g> Lowering<'a, 'g> {
                     .iter()
                     .map(|(_, t)| self.constant_expression(t, values))
                     .collect();
-                let ty = types::arg_type(&mut self.module, ty);
-                self_append(&mut self.module, Expression::Compose { ty, components })
+                let ty = types::arg_type(&mut self.shared.module, ty);
+                self_append(
+                    &mut self.shared.module,
+                    Expression::Compose { ty, components },
+                )
             }
         }
     }
@@ -301,19 +411,23 @@ impl<'a, 'g> Lowering<'a, 'g> {
     pub fn declare_arrays(&mut self) {
         let view = self.view;
         for array in view.arrays() {
-            let f = types::f32(&mut self.module);
+            if let Some((_, constant)) = self.shared.arrays.iter().find(|(a, _)| a == array) {
+                self.arrays.push(*constant);
+                continue;
+            }
+            let f = types::f32(&mut self.shared.module);
             let fields: Vec<(String, Handle<Type>)> =
                 field_names(array.info.fields, array_width(array))
                     .into_iter()
                     .map(|n| (n, f))
                     .collect();
             let element = types::structure(
-                &mut self.module,
+                &mut self.shared.module,
                 &format!("{}Element", camel_case(array.info.name)),
                 &fields,
             );
             let count = array.elements.len() as u32;
-            let ty = types::array(&mut self.module, element, Some(count));
+            let ty = types::array(&mut self.shared.module, element, Some(count));
             let rows: Vec<Handle<Expression>> = array
                 .elements
                 .iter()
@@ -322,13 +436,13 @@ impl<'a, 'g> Lowering<'a, 'g> {
                         .iter()
                         .map(|&v| {
                             self_append(
-                                &mut self.module,
+                                &mut self.shared.module,
                                 Expression::Literal(naga::Literal::F32(v)),
                             )
                         })
                         .collect();
                     self_append(
-                        &mut self.module,
+                        &mut self.shared.module,
                         Expression::Compose {
                             ty: element,
                             components,
@@ -337,13 +451,13 @@ impl<'a, 'g> Lowering<'a, 'g> {
                 })
                 .collect();
             let init = self_append(
-                &mut self.module,
+                &mut self.shared.module,
                 Expression::Compose {
                     ty,
                     components: rows,
                 },
             );
-            let constant = self.module.constants.append(
+            let constant = self.shared.module.constants.append(
                 Constant {
                     name: Some(array.info.array.to_string()),
                     ty,
@@ -351,8 +465,73 @@ impl<'a, 'g> Lowering<'a, 'g> {
                 },
                 Span::UNDEFINED,
             );
-            self.arrays.push(ArrayConstant { constant, count });
+            let constant = ArrayConstant { constant, count };
+            self.shared.arrays.push((array.clone(), constant));
+            self.arrays.push(constant);
         }
+    }
+
+    /// What makes a graph function the same shader function as one already in the module:
+    /// its name, kind, parameter counts and body, with the tables, arrays and callees it
+    /// refers to resolved to the module's.
+    fn identity(&self, function: &crate::real::Function) -> String {
+        let nodes: Vec<Node> = function
+            .body
+            .nodes
+            .iter()
+            .map(|&n| match n {
+                Node::Fetch {
+                    table,
+                    coords,
+                    channel,
+                } => Node::Fetch {
+                    table: self
+                        .shared
+                        .tables
+                        .iter()
+                        .position(|(t, _)| Arc::ptr_eq(t, &self.view.tables()[table as usize]))
+                        .unwrap_or(usize::MAX) as u32,
+                    coords,
+                    channel,
+                },
+                other => other,
+            })
+            .collect();
+        let globals: Vec<String> = function
+            .body
+            .nodes
+            .iter()
+            .filter_map(|n| match n {
+                Node::Global(k) => Some(format!("{:?}", self.globals.get(*k as usize))),
+                _ => None,
+            })
+            .collect();
+        let calls: Vec<(Option<Handle<Function>>, &[u32], Option<Handle<Constant>>)> = function
+            .body
+            .calls
+            .iter()
+            .map(|c| {
+                let callee = self.functions.get(c.function as usize).copied().flatten();
+                let array = match c.kind {
+                    CallKind::Call => None,
+                    CallKind::Loop { array } => self.arrays.get(array as usize).map(|a| a.constant),
+                };
+                (callee.map(|l| l.handle), &c.args[..], array)
+            })
+            .collect();
+        format!(
+            "{:?}",
+            (
+                &function.name,
+                function.kind,
+                function.inputs,
+                function.captures,
+                nodes,
+                globals,
+                calls,
+                &function.body.outputs
+            )
+        )
     }
 
     /// Lowers every reachable graph function, callees first.
@@ -362,10 +541,16 @@ impl<'a, 'g> Lowering<'a, 'g> {
             if !self.reachable[f] {
                 continue;
             }
-            let mut b = FnBuilder::new(&function.name);
+            let key = self.identity(function);
+            if let Some(&lowered) = self.shared.functions.get(&key) {
+                self.functions[f] = Some(lowered);
+                continue;
+            }
+            let name = self.shared.unique_name(&function.name);
+            let mut b = FnBuilder::new(&name);
             let mut inputs = Vec::new();
-            let f32t = types::f32(&mut self.module);
-            let vec3t = types::vec3(&mut self.module);
+            let f32t = types::f32(&mut self.shared.module);
+            let vec3t = types::vec3(&mut self.shared.module);
             let result = match function.kind {
                 FunctionKind::Function(info) => {
                     for &(name, shape) in info.parameters {
@@ -401,7 +586,7 @@ impl<'a, 'g> Lowering<'a, 'g> {
             for name in self.capture_names[f].clone() {
                 inputs.push(Source::Value(b.argument(&name, f32t)));
             }
-            let ty = result.ty(&mut self.module);
+            let ty = result.ty(&mut self.shared.module);
             b.result(ty);
             let live = std::mem::replace(
                 &mut self.live[f],
@@ -414,23 +599,43 @@ impl<'a, 'g> Lowering<'a, 'g> {
             self.live[f] = live;
             let value = self.compose_result(&mut b, result, &outputs);
             b.ret(Some(value));
-            let handle = self.module.functions.append(b.finish(), Span::UNDEFINED);
-            self.functions[f] = Some(Lowered { handle, result });
+            let handle = self
+                .shared
+                .module
+                .functions
+                .append(b.finish(), Span::UNDEFINED);
+            let lowered = Lowered { handle, result };
+            self.functions[f] = Some(lowered);
+            self.shared.functions.insert(key, lowered);
+            let (source, equation) = match function.kind {
+                FunctionKind::Function(i) => (i.source, i.equation),
+                FunctionKind::LoopBody(l) => (l.source, l.equation),
+            };
+            self.shared
+                .comments
+                .push((name, vec![format!("{source} -- {equation}")]));
         }
         Ok(())
     }
 
-    /// Lowers the top-level body as the function `name` of the signature's arguments;
-    /// returns it and its result kind.
-    pub fn lower_top(&mut self, name: &str) -> Result<(Handle<Function>, ResultKind), ShaderError> {
+    /// Lowers the top-level body as the function `name` of the signature's arguments.
+    ///
+    /// # Errors
+    /// [`ShaderError::NameConflict`] if the module has a function `name`.
+    pub fn lower_top(&mut self, name: &str) -> Result<(), ShaderError> {
         let view = self.view;
+        if !self.shared.names.insert(name.to_string()) {
+            return Err(ShaderError::NameConflict {
+                name: name.to_string(),
+            });
+        }
         let mut b = FnBuilder::new(name);
         let mut inputs = Vec::new();
         for p in &view.signature().parameters {
             if constant_values(p).is_some() {
                 continue;
             }
-            let ty = types::arg_type(&mut self.module, &p.ty);
+            let ty = types::arg_type(&mut self.shared.module, &p.ty);
             let base = b.argument(&p.name, ty);
             let mut paths = Vec::new();
             scalar_paths(&p.ty, &mut Vec::new(), &mut paths);
@@ -444,7 +649,7 @@ impl<'a, 'g> Lowering<'a, 'g> {
         }
         let body = view.body();
         let result = ResultKind::of(view.signature().result, body.outputs.len());
-        let ty = result.ty(&mut self.module);
+        let ty = result.ty(&mut self.shared.module);
         b.result(ty);
         let live = std::mem::replace(
             &mut self.top_live,
@@ -457,8 +662,28 @@ impl<'a, 'g> Lowering<'a, 'g> {
         self.top_live = live;
         let value = self.compose_result(&mut b, result, &outputs);
         b.ret(Some(value));
-        let handle = self.module.functions.append(b.finish(), Span::UNDEFINED);
-        Ok((handle, result))
+        let handle = self
+            .shared
+            .module
+            .functions
+            .append(b.finish(), Span::UNDEFINED);
+        let mut signature = view.signature().clone();
+        signature
+            .parameters
+            .retain(|p| constant_values(p).is_none());
+        self.shared.tops.push(Top {
+            name: name.to_string(),
+            handle,
+            signature,
+            result,
+        });
+        self.shared.comments.push((
+            name.to_string(),
+            vec![format!(
+                "{name}: the traced function, generated by hairmath::shader"
+            )],
+        ));
+        Ok(())
     }
 
     /// The function's return value from its output scalars.
@@ -471,11 +696,11 @@ impl<'a, 'g> Lowering<'a, 'g> {
         match result {
             ResultKind::Scalar => outputs[0],
             ResultKind::Vec3 => {
-                let ty = types::vec3(&mut self.module);
+                let ty = types::vec3(&mut self.shared.module);
                 compose(b, ty, outputs, &HashMap::new())
             }
             ResultKind::Array(_) => {
-                let ty = result.ty(&mut self.module);
+                let ty = result.ty(&mut self.shared.module);
                 b.expr(Expression::Compose {
                     ty,
                     components: outputs.to_vec(),
@@ -658,7 +883,7 @@ impl<'a, 'g> Lowering<'a, 'g> {
         })
     }
 
-    fn callee(&self, call: &CallSite) -> Result<(Lowered, &'a super::view::Function), ShaderError> {
+    fn callee(&self, call: &CallSite) -> Result<(Lowered, &'a crate::real::Function), ShaderError> {
         let view = self.view;
         let function = view
             .functions()
@@ -699,7 +924,7 @@ impl<'a, 'g> Lowering<'a, 'g> {
         let mut args = Vec::new();
         let mut rest = &values[..];
         if let FunctionKind::Function(info) = function.kind {
-            let vec3t = types::vec3(&mut self.module);
+            let vec3t = types::vec3(&mut self.shared.module);
             for &(_, shape) in info.parameters {
                 match shape {
                     Shape::Scalar => {
@@ -749,8 +974,8 @@ impl<'a, 'g> Lowering<'a, 'g> {
                 call.args.len()
             )));
         }
-        let f32t = types::f32(&mut self.module);
-        let u32t = types::u32(&mut self.module);
+        let f32t = types::f32(&mut self.shared.module);
+        let u32t = types::u32(&mut self.shared.module);
         let names = field_names(info.state, state_len);
         let mut state = Vec::with_capacity(state_len);
         for (s, name) in names.iter().enumerate() {
@@ -1014,7 +1239,7 @@ fn scalar_names(base: &str, ty: &ArgType, out: &mut Vec<String>) {
 }
 
 /// Names of the top-level body's input scalars.
-fn top_scalar_names(view: &View) -> Vec<String> {
+fn top_scalar_names(view: &Graph) -> Vec<String> {
     let mut out = Vec::new();
     for p in &view.signature().parameters {
         if constant_values(p).is_none() {
@@ -1025,7 +1250,7 @@ fn top_scalar_names(view: &View) -> Vec<String> {
 }
 
 /// Names of the [`Node::Global`] scalars.
-fn global_scalar_names(view: &View) -> Vec<String> {
+fn global_scalar_names(view: &Graph) -> Vec<String> {
     let mut out = Vec::new();
     for p in &view.signature().parameters {
         if constant_values(p).is_some() {
@@ -1037,7 +1262,7 @@ fn global_scalar_names(view: &View) -> Vec<String> {
 
 /// Names of a function's explicit parameters, per scalar for a loop body (state, then the
 /// element's fields) and per parameter for a function.
-fn explicit_names(function: &super::view::Function) -> Vec<String> {
+fn explicit_names(function: &crate::real::Function) -> Vec<String> {
     match function.kind {
         FunctionKind::Function(info) => {
             let mut out = Vec::new();
@@ -1069,7 +1294,7 @@ fn field_names(names: &[&str], count: usize) -> Vec<String> {
 }
 
 /// Scalars per element of a constant array.
-fn array_width(array: &super::view::ConstArray) -> usize {
+fn array_width(array: &ConstArray) -> usize {
     array
         .elements
         .first()
@@ -1088,4 +1313,97 @@ fn camel_case(name: &str) -> String {
             }
         })
         .collect()
+}
+
+/// Adds `name(tangent, wi, wo, rest...)`: `local(frame(tangent, wi, wo), rest...)` (see
+/// [`super::ModuleBuilder::world_companion`]).
+pub(super) fn world_companion(
+    shared: &mut Shared,
+    name: &str,
+    frame: &str,
+    local: &str,
+) -> Result<(), ShaderError> {
+    let find = |n: &str| {
+        shared
+            .tops
+            .iter()
+            .find(|t| t.name == n)
+            .cloned()
+            .ok_or_else(|| ShaderError::Unsupported(format!("no top-level function {n}")))
+    };
+    let (frame_top, local_top) = (find(frame)?, find(local)?);
+    let frame_params = &frame_top.signature.parameters;
+    if frame_params.len() != 3
+        || frame_params.iter().any(|p| p.ty != ArgType::Vec3)
+        || frame_top.result != ResultKind::Array(6)
+    {
+        return Err(ShaderError::Unsupported(format!(
+            "{frame} does not map three vec3<f32> to six scalars"
+        )));
+    }
+    let local_params = &local_top.signature.parameters;
+    if local_params.len() < 2 || local_params[..2].iter().any(|p| p.ty != ArgType::Vec3) {
+        return Err(ShaderError::Unsupported(format!(
+            "{local} does not start with two vec3<f32> arguments"
+        )));
+    }
+    if !shared.names.insert(name.to_string()) {
+        return Err(ShaderError::NameConflict {
+            name: name.to_string(),
+        });
+    }
+    let module = &mut shared.module;
+    let vec3t = types::vec3(module);
+    let mut b = FnBuilder::new(name);
+    let directions: Vec<Handle<Expression>> = frame_params
+        .iter()
+        .map(|p| b.argument(&p.name, vec3t))
+        .collect();
+    let rest: Vec<Handle<Expression>> = local_params[2..]
+        .iter()
+        .map(|p| {
+            let ty = types::arg_type(module, &p.ty);
+            b.argument(&p.name, ty)
+        })
+        .collect();
+    let ty = local_top.result.ty(module);
+    b.result(ty);
+    let local_dirs = b.call(frame_top.handle, directions);
+    let mut args = Vec::with_capacity(2 + rest.len());
+    for first in [0, 3] {
+        let components = (first..first + 3)
+            .map(|i| {
+                b.expr(Expression::AccessIndex {
+                    base: local_dirs,
+                    index: i,
+                })
+            })
+            .collect();
+        args.push(b.expr(Expression::Compose {
+            ty: vec3t,
+            components,
+        }));
+    }
+    args.extend(rest);
+    let value = b.call(local_top.handle, args);
+    b.ret(Some(value));
+    let handle = module.functions.append(b.finish(), Span::UNDEFINED);
+    let mut signature = frame_top.signature.clone();
+    signature
+        .parameters
+        .extend(local_params[2..].iter().cloned());
+    signature.result = local_top.signature.result;
+    shared.tops.push(Top {
+        name: name.to_string(),
+        handle,
+        signature,
+        result: local_top.result,
+    });
+    shared.comments.push((
+        name.to_string(),
+        vec![format!(
+            "{name}: {local} of world-space directions, made local to the fibre by {frame}"
+        )],
+    ));
+    Ok(())
 }

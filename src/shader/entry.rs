@@ -3,8 +3,9 @@
 use super::body::ResultKind;
 use super::builder::FnBuilder;
 use super::types;
-use super::view::constant_values;
-use super::{ENTRY_POINT, QUERY_BINDING, ROW_GROUP, VALUE_BINDING, WORKGROUP_SIZE};
+use super::{
+    constant_values, ENTRY_POINT, QUERY_BINDING, ROW_GROUP, VALUE_BINDING, WORKGROUP_SIZE,
+};
 use crate::real::{ArgType, Signature};
 use naga::{
     AddressSpace, BinaryOperator, BuiltIn, EntryPoint, Expression, Function, GlobalVariable,

@@ -49,21 +49,26 @@
 mod body;
 mod builder;
 mod entry;
+mod names;
 mod tables;
 mod types;
-mod view;
 mod write;
 
 pub use crate::real::TEXTURE_CHANNELS;
 pub use write::{BOUNDS_CHECKS, GLSL_FIRST_TEXTURE_BINDING, MSL_SIZES_BUFFER};
 
 use crate::lut::Table;
-use crate::real::{Graph, Signature};
-use body::{Lowering, ResultKind};
+use crate::real::{Graph, Parameter};
+use body::{Lowering, Shared, Top};
 use naga::valid::ModuleInfo;
-use naga::{Function, Handle, Module};
-use view::{constant_values, FunctionKind, View};
+use naga::Module;
+use std::sync::Arc;
 use write::Lang;
+
+/// `Some(values)` when the parameter is a module-scope constant rather than an argument.
+fn constant_values(parameter: &Parameter) -> Option<&[f32]> {
+    parameter.constant.as_deref()
+}
 
 /// The name of the compute entry point.
 pub const ENTRY_POINT: &str = "hair_main";
@@ -115,6 +120,18 @@ pub enum ShaderError {
         /// The scalars of the function's arguments.
         needed: usize,
     },
+    /// Two top-level functions of one name.
+    #[error("the module already has a function {name}")]
+    NameConflict {
+        /// The name.
+        name: String,
+    },
+    /// Two graphs bake a constant of one name with different values or types.
+    #[error("the constant {name} has different values in the graphs of one module")]
+    ConstantConflict {
+        /// The constant's name.
+        name: String,
+    },
     /// The graph does not have the shape the lowering expects (a programming error in the
     /// tracer or in a hand-made graph).
     #[error("the traced graph cannot be lowered: {0}")]
@@ -133,7 +150,7 @@ pub struct TextureBinding {
     pub binding: u32,
     /// The texture's name in shader code.
     pub name: String,
-    /// The table's index in [`Graph::tables`].
+    /// The table's index in [`ShaderModule::tables`] (for one graph, in [`Graph::tables`]).
     pub table: usize,
     /// Which group of [`TEXTURE_CHANNELS`] channels of the table (0 for a table of at most
     /// four channels).
@@ -207,7 +224,102 @@ impl TextureBinding {
     }
 }
 
-/// A validated naga module of a traced graph, with what its writers need.
+/// Lowers graphs into one module: [`ModuleBuilder::add`] one graph per top-level function,
+/// optionally [`ModuleBuilder::world_companion`], then [`ModuleBuilder::build`].
+///
+/// The graphs share what is equal: a function of the same name, kind and body (with the same
+/// tables, arrays and callees) is one shader function, one of the same name and another body
+/// is renamed (`name_2`, ...); a table (by pointer) is one set of texture bindings; equal
+/// constant arrays are one constant; constant parameters of the same name must have the same
+/// type and values and are one constant.
+pub struct ModuleBuilder {
+    shared: Shared,
+}
+
+impl Default for ModuleBuilder {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl ModuleBuilder {
+    /// An empty module.
+    pub fn new() -> Self {
+        ModuleBuilder {
+            shared: Shared::default(),
+        }
+    }
+
+    /// Adds `graph` as the top-level function `name` (see the [module docs](self)). The first
+    /// graph added is the one the compute entry point evaluates.
+    ///
+    /// # Errors
+    /// [`ShaderError::NameConflict`] if the module already has a function `name`,
+    /// [`ShaderError::ConstantConflict`] for a constant parameter of the name of an earlier
+    /// one with other values, [`ShaderError::Unsupported`] for a graph of a shape the tracer
+    /// does not make.
+    pub fn add(mut self, graph: &Graph, name: &str) -> Result<Self, ShaderError> {
+        let mut lowering = Lowering::new(&mut self.shared, graph);
+        lowering.declare_constants()?;
+        lowering.declare_arrays();
+        lowering.lower_functions()?;
+        lowering.lower_top(name)?;
+        Ok(self)
+    }
+
+    /// Adds the function `name(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, rest...)`
+    /// for world-space directions: it calls the top-level function `frame` (three `vec3<f32>`
+    /// arguments, six scalar outputs: local wi, then local wo, such as
+    /// `hairmath::geometry::trace_local_directions`) and returns the top-level function
+    /// `local` (whose first two arguments are `vec3<f32>` wi and wo) at the local directions
+    /// and the further arguments `rest` of `local`. The first three arguments are named as
+    /// `frame`'s.
+    ///
+    /// # Errors
+    /// [`ShaderError::Unsupported`] if `frame` or `local` is not a top-level function of
+    /// those shapes, [`ShaderError::NameConflict`] if `name` is taken.
+    pub fn world_companion(
+        mut self,
+        name: &str,
+        frame: &str,
+        local: &str,
+    ) -> Result<Self, ShaderError> {
+        body::world_companion(&mut self.shared, name, frame, local)?;
+        Ok(self)
+    }
+
+    /// The validated module.
+    ///
+    /// # Errors
+    /// [`ShaderError::Validation`] if naga's validator rejects it (naming the function),
+    /// [`ShaderError::Unsupported`] if no graph was added.
+    pub fn build(self) -> Result<ShaderModule, ShaderError> {
+        let Shared {
+            mut module,
+            tables,
+            bindings,
+            tops,
+            comments,
+            ..
+        } = self.shared;
+        if tops.is_empty() {
+            return Err(ShaderError::Unsupported("a module of no function".into()));
+        }
+        names::protect_public_names(&mut module, &tops);
+        let info = write::validate(&module)?;
+        Ok(ShaderModule {
+            library: module,
+            library_info: info,
+            entry: None,
+            tables: tables.into_iter().map(|(t, _)| t).collect(),
+            tops,
+            comments,
+            bindings,
+        })
+    }
+}
+
+/// A validated naga module of traced graphs, with what its writers need.
 #[derive(Clone, Debug)]
 pub struct ShaderModule {
     /// The library form: no entry point.
@@ -215,10 +327,9 @@ pub struct ShaderModule {
     library_info: ModuleInfo,
     /// The library with the compute entry point and its row buffers, and the row stride.
     entry: Option<Entry>,
-    name: String,
-    signature: Signature,
-    top: Handle<Function>,
-    result: ResultKind,
+    tables: Vec<Arc<Table>>,
+    /// The top-level functions, in the order they were added.
+    tops: Vec<Top>,
     /// (shader function name, comment lines) in module order.
     comments: Vec<(String, Vec<String>)>,
     bindings: Vec<TextureBinding>,
@@ -230,65 +341,18 @@ struct Entry {
     module: Module,
     info: ModuleInfo,
     stride: usize,
+    function: String,
 }
 
 /// Lowers `graph` to a validated naga module whose top-level function is `name` (see the
 /// [module docs](self)): the library form, without an entry point.
+/// `ModuleBuilder::new().add(graph, name)?.build()`.
 ///
 /// # Errors
 /// [`ShaderError::Validation`] when naga's validator rejects the module (naming the
 /// function), [`ShaderError::Unsupported`] for a graph of a shape the tracer does not make.
 pub fn lower(graph: &Graph, name: &str) -> Result<ShaderModule, ShaderError> {
-    let view = View::new(graph);
-    let mut module = Module::default();
-    let (helpers, bindings) = tables::declare_tables(&mut module, view.tables());
-    let mut comments = Vec::new();
-    for (k, t) in view.tables().iter().enumerate() {
-        comments.push((
-            tables::table_name(k, t),
-            vec![format!(
-                "table {k} ({}): {} axes, {} channels; multilinear interpolation of texels read \
-                 with textureLoad, in the operation order of hairmath::lut::Table::lookup_into",
-                t.meta().kind,
-                t.axes().len(),
-                t.channels().len()
-            )],
-        ));
-    }
-    let mut lowering = Lowering::new(module, &view, helpers);
-    lowering.declare_constants()?;
-    lowering.declare_arrays();
-    lowering.lower_functions()?;
-    for function in view.functions() {
-        let (source, equation) = match function.kind {
-            FunctionKind::Function(f) => (f.source, f.equation),
-            FunctionKind::LoopBody(l) => (l.source, l.equation),
-        };
-        comments.push((
-            function.name.clone(),
-            vec![format!("{source} -- {equation}")],
-        ));
-    }
-    let (top, result) = lowering.lower_top(name)?;
-    comments.push((
-        name.to_string(),
-        vec![format!(
-            "{name}: the traced function, generated by hairmath::shader::lower"
-        )],
-    ));
-    let module = lowering.module;
-    let info = write::validate(&module)?;
-    Ok(ShaderModule {
-        library: module,
-        library_info: info,
-        entry: None,
-        name: name.to_string(),
-        signature: view.signature().clone(),
-        top,
-        result,
-        comments,
-        bindings,
-    })
+    ModuleBuilder::new().add(graph, name)?.build()
 }
 
 impl ShaderModule {
@@ -303,9 +367,15 @@ impl ShaderModule {
         self.entry.as_ref().map_or(&self.library_info, |e| &e.info)
     }
 
-    /// The top-level function's name.
+    /// The name of the first top-level function (the one the compute entry point evaluates
+    /// by default).
     pub fn name(&self) -> &str {
-        &self.name
+        &self.tops[0].name
+    }
+
+    /// The names of the top-level functions, in the order they were added.
+    pub fn functions(&self) -> Vec<&str> {
+        self.tops.iter().map(|t| t.name.as_str()).collect()
     }
 
     /// The tables' texture bindings, in binding order.
@@ -313,15 +383,22 @@ impl ShaderModule {
         &self.bindings
     }
 
-    /// The number of f32 of the top-level function's arguments: the smallest row stride of
-    /// the compute entry point.
-    pub fn argument_scalars(&self) -> usize {
-        self.signature
-            .parameters
+    /// The tables the bindings read ([`TextureBinding::table`] indexes this), each once.
+    pub fn tables(&self) -> &[Arc<Table>] {
+        &self.tables
+    }
+
+    fn top(&self, function: &str) -> Result<&Top, ShaderError> {
+        self.tops
             .iter()
-            .filter(|p| constant_values(p).is_none())
-            .map(|p| p.ty.width())
-            .sum()
+            .find(|t| t.name == function)
+            .ok_or_else(|| ShaderError::Unsupported(format!("no top-level function {function}")))
+    }
+
+    /// The number of f32 of the first top-level function's arguments: the smallest row
+    /// stride of the compute entry point.
+    pub fn argument_scalars(&self) -> usize {
+        self.tops[0].signature.argument_count()
     }
 
     /// The row stride of the compute entry point, if the module has it.
@@ -329,18 +406,33 @@ impl ShaderModule {
         self.entry.as_ref().map(|e| e.stride)
     }
 
-    /// The module with the compute entry point `hair_main` (see the [module docs](self)),
-    /// reading rows of `stride` f32; a module that already has one gets it replaced.
+    /// The module with the compute entry point `hair_main` (see the [module docs](self))
+    /// evaluating the first top-level function on rows of `stride` f32; a module that
+    /// already has an entry point gets it replaced.
     ///
     /// # Errors
     /// [`ShaderError::Stride`] when `stride` is smaller than
-    /// [`ShaderModule::argument_scalars`] (or does not fit in a `u32`),
+    /// [`ShaderModule::argument_scalars`] (or too large for `u32` indices),
     /// [`ShaderError::Validation`] if the module with the entry point does not validate.
     pub fn with_compute_entry(&self, stride: usize) -> Result<ShaderModule, ShaderError> {
-        let needed = self.argument_scalars();
+        self.with_compute_entry_of(&self.tops[0].name, stride)
+    }
+
+    /// [`ShaderModule::with_compute_entry`] evaluating the top-level function `function`.
+    ///
+    /// # Errors
+    /// As [`ShaderModule::with_compute_entry`], and [`ShaderError::Unsupported`] if there is
+    /// no top-level function `function`.
+    pub fn with_compute_entry_of(
+        &self,
+        function: &str,
+        stride: usize,
+    ) -> Result<ShaderModule, ShaderError> {
+        let top = self.top(function)?;
+        let needed = top.signature.argument_count();
         if stride < needed || stride > u32::MAX as usize / 4 {
             return Err(ShaderError::Stride {
-                function: self.name.clone(),
+                function: function.to_string(),
                 stride,
                 needed,
             });
@@ -348,9 +440,9 @@ impl ShaderModule {
         let mut module = self.library.clone();
         entry::add_entry_point(
             &mut module,
-            self.top,
-            &self.signature,
-            self.result,
+            top.handle,
+            &top.signature,
+            top.result,
             stride as u32,
         );
         let info = write::validate(&module)?;
@@ -359,9 +451,15 @@ impl ShaderModule {
                 module,
                 info,
                 stride,
+                function: function.to_string(),
             }),
             ..self.clone()
         })
+    }
+
+    /// The top-level function the entry point evaluates, if the module has it.
+    pub fn entry_function(&self) -> Option<&str> {
+        self.entry.as_ref().map(|e| e.function.as_str())
     }
 
     /// This module if it has the entry point, else the module with it at the smallest stride.
@@ -374,8 +472,23 @@ impl ShaderModule {
         }
     }
 
+    /// `text` with the top-level functions' argument names restored and the comments.
     fn comment(&self, text: &str, lang: Lang) -> String {
-        write::insert_comments(text, lang, &self.comments, &self.bindings)
+        let module = self.module();
+        let tops: Vec<(String, Vec<String>)> = self
+            .tops
+            .iter()
+            .map(|t| {
+                let args = module.functions[t.handle]
+                    .arguments
+                    .iter()
+                    .filter_map(|a| a.name.clone())
+                    .collect();
+                (t.name.clone(), args)
+            })
+            .collect();
+        let text = names::restore_arguments(text, lang, &tops);
+        write::insert_comments(&text, lang, &self.comments, &self.bindings)
     }
 
     /// WGSL of the module: the library form (functions, constants and bindings) or, after

@@ -48,69 +48,67 @@ fn identifier(text: &str) -> String {
     out.trim_end_matches('_').to_string()
 }
 
-/// Declares the textures of every table (bindings counted from 0 in [`TABLE_GROUP`]) and
-/// their helper functions; returns the helpers and the bindings, in table order.
-pub(super) fn declare_tables(
+/// Declares the textures of table `k` of the module (bindings from `first_binding` in
+/// [`TABLE_GROUP`]) and its helper function; returns the helper and the bindings.
+pub(super) fn declare_table(
     module: &mut Module,
-    tables: &[std::sync::Arc<Table>],
-) -> (Vec<TableHelper>, Vec<TextureBinding>) {
-    let mut helpers = Vec::with_capacity(tables.len());
-    let mut bindings = Vec::new();
-    for (k, table) in tables.iter().enumerate() {
-        let name = table_name(k, table);
-        let dims = table.axes().len();
-        let channels = table.channels();
-        let count = channels.len().div_ceil(TEXTURE_CHANNELS);
-        let ty = types::texture(module, dims);
-        let mut globals = Vec::with_capacity(count);
-        for t in 0..count {
-            let texture_name = if count == 1 {
-                format!("{name}_texels")
-            } else {
-                format!("{name}_texels_{}", (b'a' + t as u8) as char)
-            };
-            let binding = bindings.len() as u32;
-            globals.push(module.global_variables.append(
-                GlobalVariable {
-                    name: Some(texture_name.clone()),
-                    space: AddressSpace::Handle,
-                    binding: Some(ResourceBinding {
-                        group: TABLE_GROUP,
-                        binding,
-                    }),
-                    ty,
-                    init: None,
-                    memory_decorations: Default::default(),
-                },
-                Span::UNDEFINED,
-            ));
-            let group =
-                &channels[t * TEXTURE_CHANNELS..((t + 1) * TEXTURE_CHANNELS).min(channels.len())];
-            bindings.push(TextureBinding {
-                group: TABLE_GROUP,
-                binding,
-                name: texture_name,
-                table: k,
-                texture: t,
-                dimension: dims,
-                size: table.axes().iter().map(|a| a.size()).collect(),
-                axes: table
-                    .axes()
-                    .iter()
-                    .map(|a| (a.name().to_string(), a.min(), a.max()))
-                    .collect(),
-                channels: group.to_vec(),
-            });
-        }
-        let function = helper(module, &name, table, &globals);
-        helpers.push(TableHelper {
-            function,
-            dims,
-            channels: channels.len() as u32,
-            textures: count,
+    k: usize,
+    table: &Table,
+    first_binding: u32,
+) -> (TableHelper, Vec<TextureBinding>) {
+    let name = table_name(k, table);
+    let dims = table.axes().len();
+    let channels = table.channels();
+    let count = channels.len().div_ceil(TEXTURE_CHANNELS);
+    let ty = types::texture(module, dims);
+    let mut globals = Vec::with_capacity(count);
+    let mut bindings = Vec::with_capacity(count);
+    for t in 0..count {
+        let texture_name = if count == 1 {
+            format!("{name}_texels")
+        } else {
+            format!("{name}_texels_{}", (b'a' + t as u8) as char)
+        };
+        let binding = first_binding + t as u32;
+        globals.push(module.global_variables.append(
+            GlobalVariable {
+                name: Some(texture_name.clone()),
+                space: AddressSpace::Handle,
+                binding: Some(ResourceBinding {
+                    group: TABLE_GROUP,
+                    binding,
+                }),
+                ty,
+                init: None,
+                memory_decorations: Default::default(),
+            },
+            Span::UNDEFINED,
+        ));
+        let end = ((t + 1) * TEXTURE_CHANNELS).min(channels.len());
+        bindings.push(TextureBinding {
+            group: TABLE_GROUP,
+            binding,
+            name: texture_name,
+            table: k,
+            texture: t,
+            dimension: dims,
+            size: table.axes().iter().map(|a| a.size()).collect(),
+            axes: table
+                .axes()
+                .iter()
+                .map(|a| (a.name().to_string(), a.min(), a.max()))
+                .collect(),
+            channels: channels[t * TEXTURE_CHANNELS..end].to_vec(),
         });
     }
-    (helpers, bindings)
+    let function = helper(module, &name, table, &globals);
+    let helper = TableHelper {
+        function,
+        dims,
+        channels: channels.len() as u32,
+        textures: count,
+    };
+    (helper, bindings)
 }
 
 /// The interpolation helper of `table` reading the textures `globals`:

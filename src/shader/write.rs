@@ -271,7 +271,7 @@ fn attribute_start(lines: &[String], mut at: usize) -> usize {
 
 /// Whether `line` starts the definition of the function `name` (or of `name_`, naga's
 /// spelling of names that end in a digit or are keywords).
-fn is_definition(line: &str, name: &str, lang: Lang) -> bool {
+pub(super) fn is_definition(line: &str, name: &str, lang: Lang) -> bool {
     [name.to_string(), format!("{name}_")]
         .iter()
         .any(|n| match lang {

@@ -12,15 +12,15 @@
 mod interpret;
 
 use hairmath::bcsdf::{
-    trace_eval, traced_inputs, ChiangFarField, FarFieldRule, FromInputs, InputKind, InputValue,
-    InputValues, Model, DEFAULT_FAR_FIELD_NODES,
+    trace_eval, trace_eval_with, traced_inputs, ChiangFarField, FarFieldRule, FromInputs,
+    InputKind, InputValue, InputValues, Model, UniformsIn, DEFAULT_FAR_FIELD_NODES,
 };
 use hairmath::lut::{Axis, SharedTable, Table, TableMeta};
 use hairmath::params::HairParams;
 use hairmath::real::{trace, trace_with, ArgType, Graph, Parameter, ResultType, Signature};
 use hairmath::real::{Real, StructType, Traced};
 use hairmath::registry::{find_model, ModelEntry, MODELS};
-use hairmath::shader::{lower, ShaderError, ShaderModule, ENTRY_POINT};
+use hairmath::shader::{lower, ModuleBuilder, ShaderError, ShaderModule, ENTRY_POINT};
 use interpret::{Interpreter, Texture, Value};
 use std::io::Write as _;
 use std::process::Command;
@@ -342,10 +342,7 @@ fn vector_and_struct_arguments_give_the_expected_signature() {
 }
 
 fn parameter(name: &str, ty: ArgType) -> Parameter {
-    Parameter {
-        name: name.into(),
-        ty,
-    }
+    Parameter::argument(name, ty)
 }
 
 #[test]
@@ -491,6 +488,7 @@ fn arguments(graph: &Graph, row: &[f32]) -> Vec<Value> {
         .signature()
         .parameters
         .iter()
+        .filter(|p| p.constant.is_none())
         .map(|p| take(&p.ty, &mut values))
         .collect();
     assert!(values.next().is_none(), "one value per argument scalar");
@@ -606,9 +604,11 @@ fn model_rows<M: Model>(model: &M, graph: &Graph) -> Vec<Vec<f32>> {
 fn check_model<M: Model + FromInputs>(name: &str) {
     let entry = find_model(name).unwrap_or_else(|| panic!("{name} is registered"));
     let model = M::from_inputs(&default_values(entry)).unwrap();
-    let graph = trace_eval(&model);
-    let rows = model_rows(&model, &graph);
-    check_bit_for_bit(&shader_name(name), &graph, &rows);
+    for uniforms in [UniformsIn::Argument, UniformsIn::Constant] {
+        let graph = trace_eval_with(&model, uniforms);
+        let rows = model_rows(&model, &graph);
+        check_bit_for_bit(&shader_name(name), &graph, &rows);
+    }
 }
 
 #[test]
@@ -631,8 +631,14 @@ fn every_model_shader_computes_its_graph_bit_for_bit() {
 fn the_far_field_shader_computes_its_graph_bit_for_bit() {
     let rule = FarFieldRule::gauss_legendre(8).unwrap();
     let model = ChiangFarField::with_rule(&HairParams::default(), &rule);
-    let graph = trace_eval(&model);
-    check_bit_for_bit("chiang_far_eval", &graph, &model_rows(&model, &graph));
+    for uniforms in [UniformsIn::Argument, UniformsIn::Constant] {
+        let graph = trace_eval_with(&model, uniforms);
+        assert!(
+            !graph.arrays().is_empty(),
+            "the far field's nodes are a loop"
+        );
+        check_bit_for_bit("chiang_far_eval", &graph, &model_rows(&model, &graph));
+    }
 }
 
 #[test]
@@ -685,4 +691,236 @@ fn table_interpolation_matches_lookup_into_bit_for_bit_at_edges_and_outside() {
         })
         .collect();
     check_bit_for_bit("two_tables", &graph, &rows);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Several graphs in one module.
+
+/// The default Karis model and its graph with baked uniforms.
+fn karis() -> (hairmath::models::Karis<f64>, Graph) {
+    let model =
+        hairmath::models::Karis::<f64>::from_inputs(&default_values(find_model("karis").unwrap()))
+            .unwrap();
+    let graph = trace_eval_with(&model, UniformsIn::Constant);
+    (model, graph)
+}
+
+#[test]
+fn the_public_names_are_kept_and_every_function_has_its_comment() {
+    let (_, graph) = karis();
+    let module = lower(&graph, "hair_bcsdf").unwrap();
+    let wgsl = module.wgsl().unwrap();
+    assert!(
+        wgsl.contains("fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {"),
+        "{wgsl}"
+    );
+    assert!(
+        wgsl.contains("const uniforms: KarisUniforms = KarisUniforms("),
+        "{wgsl}"
+    );
+    assert!(wgsl.contains("uniforms.width_r"), "{wgsl}");
+    assert!(!graph.functions().is_empty(), "the physics is marked");
+    for f in graph.functions() {
+        let (source, equation) = match f.kind {
+            hairmath::real::FunctionKind::Function(i) => (i.source, i.equation),
+            hairmath::real::FunctionKind::LoopBody(l) => (l.source, l.equation),
+        };
+        // naga writes a name ending in a digit with an underscore: `d_karis_2_`.
+        let defined = [format!("fn {}(", f.name), format!("fn {}_(", f.name)]
+            .iter()
+            .any(|d| wgsl.contains(&format!("// {source} -- {equation}\n{d}")));
+        assert!(defined, "{}\n{wgsl}", f.name);
+    }
+    for text in [
+        module.glsl().unwrap(),
+        module.hlsl().unwrap(),
+        module.msl().unwrap(),
+    ] {
+        for f in graph.functions() {
+            assert!(
+                text.contains(&format!(" {}(", f.name)) || text.contains(&format!(" {}_(", f.name)),
+                "{}\n{text}",
+                f.name
+            );
+        }
+        assert_eq!(
+            text.matches("// hairmath::").count(),
+            graph.functions().len(),
+            "{text}"
+        );
+    }
+}
+
+#[test]
+fn graphs_in_one_module_share_equal_functions_tables_and_constants() {
+    let (_, graph) = karis();
+    let alone = lower(&graph, "hair_bcsdf").unwrap();
+    let twice = ModuleBuilder::new()
+        .add(&graph, "hair_bcsdf")
+        .unwrap()
+        .add(&graph, "hair_bcsdf_again")
+        .unwrap()
+        .build()
+        .unwrap();
+    assert_eq!(
+        twice.module().functions.len(),
+        alone.module().functions.len() + 1,
+        "the second graph adds only its top-level function"
+    );
+    assert_eq!(
+        twice.module().constants.len(),
+        alone.module().constants.len()
+    );
+    assert_eq!(twice.functions(), ["hair_bcsdf", "hair_bcsdf_again"]);
+    reparse(&twice.wgsl().unwrap()).unwrap();
+    assert_eq!(
+        ModuleBuilder::new()
+            .add(&graph, "f")
+            .unwrap()
+            .add(&graph, "f")
+            .err(),
+        Some(ShaderError::NameConflict { name: "f".into() })
+    );
+
+    // Two models of tables: one binding set per table, every function once.
+    let graphs = model_graphs();
+    let tabled: Vec<&(String, Graph)> = graphs
+        .iter()
+        .filter(|(_, g)| !g.tables().is_empty())
+        .collect();
+    let mut builder = ModuleBuilder::new();
+    for (name, g) in &tabled {
+        builder = builder.add(g, name).unwrap();
+    }
+    let together = builder.build().unwrap();
+    let tables: usize = tabled
+        .iter()
+        .flat_map(|(_, g)| {
+            g.tables()
+                .iter()
+                .map(|t| std::sync::Arc::as_ptr(t) as usize)
+        })
+        .collect::<std::collections::BTreeSet<_>>()
+        .len();
+    assert_eq!(together.tables().len(), tables);
+    let textures: usize = together
+        .tables()
+        .iter()
+        .map(|t| t.channels().len().div_ceil(4))
+        .sum();
+    assert_eq!(together.bindings().len(), textures);
+    for (k, b) in together.bindings().iter().enumerate() {
+        assert_eq!(b.binding, k as u32);
+    }
+    let names: Vec<&str> = together
+        .module()
+        .functions
+        .iter()
+        .filter_map(|(_, f)| f.name.as_deref())
+        .collect();
+    let unique: std::collections::BTreeSet<&str> = names.iter().copied().collect();
+    assert_eq!(unique.len(), names.len(), "{names:?}");
+    let wgsl = together.wgsl().unwrap();
+    reparse(&wgsl).unwrap_or_else(|e| panic!("{e}\n{wgsl}"));
+    // The uniforms of the Argument form are arguments; baked ones of two models conflict.
+    let frostbite = hairmath::models::Frostbite::<f64>::from_inputs(&default_values(
+        find_model("frostbite").unwrap(),
+    ))
+    .unwrap();
+    let baked = trace_eval_with(&frostbite, UniformsIn::Constant);
+    assert_eq!(
+        ModuleBuilder::new()
+            .add(&graph, "karis")
+            .unwrap()
+            .add(&baked, "frostbite")
+            .err(),
+        Some(ShaderError::ConstantConflict {
+            name: "uniforms".into()
+        })
+    );
+}
+
+/// A stand-in for the fibre frame: `(tangent, wi, wo)` -> local wi and wo as six scalars
+/// (here the components of wi and wo in a frame built from the tangent's components).
+fn frame_graph() -> Graph {
+    let signature = Signature {
+        parameters: ["tangent", "wi", "wo"]
+            .map(|n| Parameter::argument(n, ArgType::Vec3))
+            .to_vec(),
+        result: ResultType::Scalars,
+    };
+    trace_with(signature, |x| {
+        let (t, wi, wo) = (&x[0..3], &x[3..6], &x[6..9]);
+        let dot = |a: &[Traced], b: &[Traced]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let n = [t[1], -t[0], Traced::c(0.0)];
+        let b = [t[2] * t[0], t[2] * t[1], -(t[0] * t[0] + t[1] * t[1])];
+        vec![
+            dot(wi, t),
+            dot(wi, &n),
+            dot(wi, &b),
+            dot(wo, t),
+            dot(wo, &n),
+            dot(wo, &b),
+        ]
+    })
+}
+
+#[test]
+fn the_world_companion_calls_the_frame_then_the_local_function() {
+    let (_, graph) = karis();
+    let frame = frame_graph();
+    let module = ModuleBuilder::new()
+        .add(&graph, "hair_bcsdf")
+        .unwrap()
+        .add(&frame, "fibre_local_directions")
+        .unwrap()
+        .world_companion("hair_bcsdf_world", "fibre_local_directions", "hair_bcsdf")
+        .unwrap()
+        .build()
+        .unwrap();
+    let wgsl = module.wgsl().unwrap();
+    reparse(&wgsl).unwrap_or_else(|e| panic!("{e}\n{wgsl}"));
+    for signature in [
+        "fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {",
+        "fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> array<f32, 6> {",
+        "fn hair_bcsdf_world(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {",
+    ] {
+        assert!(wgsl.contains(signature), "{signature}\n{wgsl}");
+    }
+    for text in [
+        module.glsl().unwrap(),
+        module.hlsl().unwrap(),
+        module.msl().unwrap(),
+    ] {
+        assert!(text.contains("hair_bcsdf_world("), "{text}");
+    }
+    // The entry point evaluates the local function.
+    let entry = module.with_compute_entry(6).unwrap();
+    assert_eq!(entry.entry_function(), Some("hair_bcsdf"));
+    assert!(entry.wgsl().unwrap().contains("hair_bcsdf(vec3<f32>("));
+
+    let interpreter = Interpreter::new(module.module(), Vec::new());
+    for d in direction_pairs().iter().take(60) {
+        let t = [d[1], -d[0], 0.5];
+        let mut row = t.to_vec();
+        row.extend_from_slice(d);
+        let local = frame.eval_f32(&row);
+        let expected = graph.eval_f32(&local);
+        let v3 = |v: &[f32]| Value::List(v.iter().map(|&x| Value::F32(x)).collect());
+        let got = interpreter
+            .call("hair_bcsdf_world", vec![v3(&t), v3(&d[..3]), v3(&d[3..])])
+            .flatten();
+        assert_eq!(
+            got.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            expected.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            "{row:?}"
+        );
+    }
+    assert!(matches!(
+        ModuleBuilder::new()
+            .add(&graph, "a")
+            .unwrap()
+            .world_companion("w", "a", "a"),
+        Err(ShaderError::Unsupported(_))
+    ));
 }
