@@ -205,12 +205,12 @@ impl FibreFrame {
                 allowed: "the fibre tangent must be finite and non-zero",
             });
         }
-        let t = tangent / len;
-        let (normal, binormal) = t.any_orthonormal_pair();
+        let [t, n, b] = fibre_frame(V3::new(tangent.x, tangent.y, tangent.z));
+        let dvec = |v: V3<f64>| glam::DVec3::new(v.x, v.y, v.z);
         Ok(FibreFrame {
-            tangent: t,
-            normal,
-            binormal,
+            tangent: dvec(t),
+            normal: dvec(n),
+            binormal: dvec(b),
         })
     }
 
@@ -229,6 +229,60 @@ impl FibreFrame {
     }
 }
 
+/// The orthonormal frame `[tangent, normal, binormal]` of a non-zero `tangent` (normalised
+/// here): the fibre's local +X, +Y and +Z, right-handed, the normal chosen continuously
+/// except across the plane z = 0 by Duff et al. 2017 ("Building an Orthonormal Basis,
+/// Revisited", listing 3), branch-free: with `s = sign(t_z)` (+1 at 0), `a = -1 / (s + t_z)`,
+/// `b = t_x t_y a`, `normal = (1 + s t_x^2 a, s b, -s t_x)` and `binormal = (b, s + t_y^2 a,
+/// -t_y)`. The tangent's length is floored at 1e-30 so that a zero tangent gives a finite
+/// (meaningless) frame; [`FibreFrame::new`] rejects it.
+pub fn fibre_frame<R: Real>(tangent: V3<R>) -> [V3<R>; 3] {
+    const FUNCTION: ShaderFunction = crate::shader_function!(
+        fibre_frame,
+        "Duff et al. 2017, listing 3",
+        [tangent: vec3]
+    );
+    let args = [tangent.x, tangent.y, tangent.z];
+    let frame = R::call(&FUNCTION, args, |[x, y, z]| {
+        let length = (x * x + y * y + z * z).sqrt().max(R::c(1e-30));
+        let t = V3::new(x, y, z).scale(R::c(1.0) / length);
+        let one = R::c(1.0);
+        let s = R::select(t.z.lt(R::c(0.0)), -one, one);
+        let a = -one / (s + t.z);
+        let b = t.x * t.y * a;
+        let n = V3::new(one + s * t.x * t.x * a, s * b, -s * t.x);
+        let bn = V3::new(b, s + t.y * t.y * a, -t.y);
+        [t.x, t.y, t.z, n.x, n.y, n.z, bn.x, bn.y, bn.z]
+    });
+    core::array::from_fn(|k| V3::new(frame[3 * k], frame[3 * k + 1], frame[3 * k + 2]))
+}
+
+/// `wi` and `wo`, given in any frame, in the local frame of the fibre of direction `tangent`
+/// ([`fibre_frame`]): `(w . tangent, w . normal, w . binormal)`. What a world-space shader
+/// computes before evaluating a model in the local frame.
+pub fn local_directions<R: Real>(tangent: V3<R>, wi: V3<R>, wo: V3<R>) -> [V3<R>; 2] {
+    let [t, n, b] = fibre_frame(tangent);
+    [wi, wo].map(|w| V3::new(w.dot(t), w.dot(n), w.dot(b)))
+}
+
+/// [`local_directions`] traced as the shader function `fibre_local_directions(tangent:
+/// vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> array<f32, 6>` (local wi, then local wo), the
+/// frame of a world-space shader's `hair_bcsdf_world`.
+pub fn trace_local_directions() -> crate::real::Graph {
+    use crate::real::{trace_with, ArgType, Parameter, ResultType, Signature};
+    let signature = Signature {
+        parameters: ["tangent", "wi", "wo"]
+            .map(|name| Parameter::argument(name, ArgType::Vec3))
+            .to_vec(),
+        result: ResultType::Scalars,
+    };
+    trace_with(signature, |x| {
+        let v = |k: usize| V3::new(x[k], x[k + 1], x[k + 2]);
+        let [wi, wo] = local_directions(v(0), v(3), v(6));
+        vec![wi.x, wi.y, wi.z, wo.x, wo.y, wo.z]
+    })
+}
+
 /// The unit direction with longitudinal angle given by `sin_theta`, `cos_theta` and azimuth
 /// `phi` in the local frame: (sin theta, cos theta cos phi, cos theta sin phi).
 pub fn local_direction<R: Real>(sin_theta: R, cos_theta: R, phi: R) -> V3<R> {
@@ -238,6 +292,46 @@ pub fn local_direction<R: Real>(sin_theta: R, cos_theta: R, phi: R) -> V3<R> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn fibre_frames_are_orthonormal_and_right_handed_at_the_hard_tangents() {
+        let tangents = [
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+            [1.0, 0.0, 0.0],
+            [0.3, -0.2, -0.0],
+            [1e-9, -1e-9, -1.0],
+            [-3.0, 4.0, 12.0],
+            [2.0, -1.0, -1e-12],
+        ];
+        for t in tangents {
+            let [u, n, b] = fibre_frame(V3::new(t[0], t[1], t[2]));
+            let len = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+            for (k, c) in [u.x, u.y, u.z].iter().enumerate() {
+                assert!((c - t[k] / len).abs() < 1e-15, "{t:?}");
+            }
+            for (a, c) in [(u, u), (n, n), (b, b)] {
+                assert!((a.dot(c) - 1.0).abs() < 1e-14, "{t:?}");
+            }
+            for (a, c) in [(u, n), (u, b), (n, b)] {
+                assert!(a.dot(c).abs() < 1e-14, "{t:?}");
+            }
+            let z = u.cross(n);
+            assert!((z.dot(b) - 1.0).abs() < 1e-14, "right-handed at {t:?}");
+        }
+        // A zero tangent (rejected by FibreFrame::new) still gives finite numbers.
+        let zero = fibre_frame(V3::new(0.0_f64, 0.0, -0.0));
+        assert!(zero.iter().all(|v| v.x.is_finite() && v.y.is_finite() && v.z.is_finite()));
+    }
+
+    #[test]
+    fn local_directions_put_the_tangent_on_x() {
+        let t = V3::new(0.2, -0.9, 0.4);
+        let [a, b] = local_directions(t, t, t.scale(-1.0));
+        let len = t.dot(t).sqrt();
+        assert!((a.x - len).abs() < 1e-14 && a.y.abs() < 1e-14 && a.z.abs() < 1e-14);
+        assert!((b.x + len).abs() < 1e-14);
+    }
     use std::f64::consts::{FRAC_PI_2, PI};
 
     fn dir(theta: f64, phi: f64) -> V3<f64> {

@@ -27,8 +27,8 @@ use hairmath::fresnel::{
     bravais_eta_parallel, bravais_eta_perpendicular, fresnel_dielectric, fresnel_schlick,
 };
 use hairmath::geometry::{
-    azimuth_between, fibre_angles, local_direction, local_fibre_angles, local_sin_cos_theta,
-    sin_cos_theta, FibreAngles, V3,
+    azimuth_between, fibre_angles, fibre_frame, local_direction, local_directions,
+    local_fibre_angles, local_sin_cos_theta, sin_cos_theta, FibreAngles, V3,
 };
 use hairmath::lobe::{
     deon_lobe, deon_lobe_sample_cos_theta, gaussian_lobe, hg_gerard_printed, DeonLobe,
@@ -698,6 +698,24 @@ traced_tests! {
     geometry_local_fibre_angles ["local_fibre_angles"] {
         case!("local_fibre_angles", rows(|g| g.pair()), |x| {
             of_angles(local_fibre_angles(v3(x), v3(&x[3..])))
+        });
+    }
+    geometry_fibre_frame ["fibre_frame", "local_directions"] {
+        // Tangents of any length and sign, the poles (z = +-1, and -0) and the plane z = 0.
+        let poles = [[0.0, 0.0, 1.0], [0.0, 0.0, -1.0], [0.3, -0.2, -0.0], [1.0, 0.0, 0.0]];
+        let inputs = rows(|g| {
+            let t = match g.below(3) {
+                0 => poles[g.below(4)].to_vec(),
+                _ => g.dir().iter().map(|c| c * 3.5).collect(),
+            };
+            [&t[..], &g.pair()[..]].concat()
+        });
+        case!("fibre_frame", inputs.clone(), |x| {
+            fibre_frame(v3(x)).iter().flat_map(|v| of_v3(*v)).collect()
+        });
+        case!("local_directions", inputs, |x| {
+            let [wi, wo] = local_directions(v3(x), v3(&x[3..]), v3(&x[6..]));
+            [of_v3(wi), of_v3(wo)].concat()
         });
     }
     geometry_local_direction ["local_direction"] {
