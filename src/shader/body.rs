@@ -72,6 +72,13 @@ pub(super) enum Source {
     },
 }
 
+/// A call site with its callee and array resolved to the module's.
+type CallIdentity<'b> = (
+    Option<Handle<Function>>,
+    &'b [u32],
+    Option<Handle<Constant>>,
+);
+
 /// A lowered graph function.
 #[derive(Clone, Copy, Debug)]
 struct Lowered {
@@ -295,7 +302,10 @@ impl<'a> Lowering<'a> {
                 };
                 let name = match hint {
                     Some(h) if !taken.contains(&h) => h,
-                    _ => format!("c{i}"),
+                    _ => (i..)
+                        .map(|j| format!("c{j}"))
+                        .find(|c| !taken.contains(c))
+                        .expect("an unused name"),
                 };
                 taken.push(name.clone());
                 names.push(name);
@@ -506,7 +516,7 @@ impl<'a> Lowering<'a> {
                 _ => None,
             })
             .collect();
-        let calls: Vec<(Option<Handle<Function>>, &[u32], Option<Handle<Constant>>)> = function
+        let calls: Vec<CallIdentity> = function
             .body
             .calls
             .iter()

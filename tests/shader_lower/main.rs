@@ -444,27 +444,48 @@ fn run_tool(tool: &str, args: &[&str], file: &str, contents: &[u8]) -> Option<Re
 }
 
 #[test]
-fn glslang_and_spirv_val_accept_a_model_with_tables() {
+fn glslang_and_spirv_val_accept_models_with_tables_calls_and_loops() {
     let graphs = model_graphs();
-    for (name, graph) in graphs
+    let rule = FarFieldRule::gauss_legendre(DEFAULT_FAR_FIELD_NODES).unwrap();
+    let far = ChiangFarField::with_rule(&HairParams::default(), &rule);
+    let far = trace_eval_with(&far, UniformsIn::Constant);
+    let mut cases: Vec<(&str, &Graph)> = graphs
         .iter()
-        .filter(|(n, g)| n == "gerard_eval" || g.tables().is_empty() && n == "karis_eval")
-    {
+        .filter(|(n, _)| n == "gerard_eval" || n == "karis_eval" || n == "nguyen_donnelly_eval")
+        .map(|(n, g)| (n.as_str(), g))
+        .collect();
+    cases.push(("chiang_far_eval", &far));
+    assert_eq!(cases.len(), 4);
+    for (name, graph) in cases {
         let module = lower(graph, name).unwrap();
         let glsl = module.glsl().unwrap();
-        if let Some(result) = run_tool(
-            "glslangValidator",
-            &["-S", "comp"],
-            &format!("{name}.comp"),
-            glsl.as_bytes(),
-        ) {
-            result.unwrap_or_else(|e| {
-                panic!("{name}: glslangValidator rejects the GLSL:\n{e}\n{glsl}")
-            });
+        let file = format!("{name}.comp");
+        let vulkan_out = format!("{name}.glslang.spv");
+        for args in [
+            &["-S", "comp"][..],
+            &[
+                "-V",
+                "--target-env",
+                "vulkan1.0",
+                "-o",
+                &vulkan_out,
+                "-S",
+                "comp",
+            ][..],
+        ] {
+            if let Some(result) = run_tool("glslangValidator", args, &file, glsl.as_bytes()) {
+                result.unwrap_or_else(|e| {
+                    panic!("{name}: glslangValidator {args:?} rejects the GLSL:\n{e}\n{glsl}")
+                });
+            }
         }
         let spirv = module.spirv_bytes().unwrap();
-        if let Some(result) = run_tool("spirv-val", &[], &format!("{name}.spv"), &spirv) {
-            result.unwrap_or_else(|e| panic!("{name}: spirv-val rejects the SPIR-V:\n{e}"));
+        for args in [&[][..], &["--target-env", "vulkan1.0"][..]] {
+            if let Some(result) = run_tool("spirv-val", args, &format!("{name}.spv"), &spirv) {
+                result.unwrap_or_else(|e| {
+                    panic!("{name}: spirv-val {args:?} rejects the SPIR-V:\n{e}")
+                });
+            }
         }
     }
 }
@@ -867,12 +888,16 @@ fn frame_graph() -> Graph {
 
 #[test]
 fn the_world_companion_calls_the_frame_then_the_local_function() {
+    world_companion_with(&frame_graph());
+    world_companion_with(&hairmath::geometry::trace_local_directions());
+}
+
+fn world_companion_with(frame: &Graph) {
     let (_, graph) = karis();
-    let frame = frame_graph();
     let module = ModuleBuilder::new()
         .add(&graph, "hair_bcsdf")
         .unwrap()
-        .add(&frame, "fibre_local_directions")
+        .add(frame, "fibre_local_directions")
         .unwrap()
         .world_companion("hair_bcsdf_world", "fibre_local_directions", "hair_bcsdf")
         .unwrap()
@@ -923,4 +948,54 @@ fn the_world_companion_calls_the_frame_then_the_local_function() {
             .world_companion("w", "a", "a"),
         Err(ShaderError::Unsupported(_))
     ));
+}
+
+#[test]
+fn the_naga_oil_form_composes_into_a_shader_that_imports_it() {
+    use naga_oil::compose::{
+        ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderLanguage,
+    };
+    let (_, karis) = karis();
+    let gerard = {
+        let entry = find_model("gerard").unwrap();
+        let model = hairmath::models::Gerard::<f64>::from_inputs(&default_values(entry)).unwrap();
+        trace_eval_with(&model, UniformsIn::Constant)
+    };
+    for (path, graph) in [("hairmath::karis", &karis), ("hairmath::gerard", &gerard)] {
+        let library = lower(graph, "hair_bcsdf")
+            .unwrap()
+            .naga_oil_wgsl(path)
+            .unwrap();
+        let mut composer = Composer::default();
+        composer
+            .add_composable_module(ComposableModuleDescriptor {
+                source: &library,
+                file_path: "hairmath.wgsl",
+                language: ShaderLanguage::Wgsl,
+                ..Default::default()
+            })
+            .unwrap_or_else(|e| panic!("{path}: {e:?}\n{library}"));
+        let main = format!(
+            "#import {path}::hair_bcsdf\n\
+             @group(0) @binding(0) var<storage, read_write> out: array<f32>;\n\
+             @compute @workgroup_size(1)\n\
+             fn main() {{\n    \
+             let v = hair_bcsdf(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 0.0, 1.0));\n    \
+             out[0] = v.x + v.y + v.z;\n\
+             }}\n"
+        );
+        let module = composer
+            .make_naga_module(NagaModuleDescriptor {
+                source: &main,
+                file_path: "main.wgsl",
+                ..Default::default()
+            })
+            .unwrap_or_else(|e| panic!("{path}: {e:?}"));
+        assert!(module.functions.len() > 1, "{path}");
+        assert_eq!(
+            module.global_variables.len(),
+            1 + graph.tables().len(),
+            "{path}: the textures come along"
+        );
+    }
 }
