@@ -16,7 +16,7 @@ pub fn raw_bytes(table: &Table) -> Vec<u8> {
 }
 
 /// A JSON string literal.
-fn json_string(s: &str) -> String {
+pub(crate) fn json_string(s: &str) -> String {
     let mut out = String::with_capacity(s.len() + 2);
     out.push('"');
     for ch in s.chars() {
@@ -36,7 +36,7 @@ fn json_string(s: &str) -> String {
 
 /// A JSON number: Rust's shortest round-trip form (valid JSON for finite values); non-finite
 /// values become `null`.
-fn json_number(v: f64) -> String {
+pub(crate) fn json_number(v: f64) -> String {
     if v.is_finite() {
         format!("{v:?}")
     } else {

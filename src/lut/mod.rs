@@ -40,7 +40,7 @@
 //! `value ~ texel / 255 * scale`.
 
 mod bake;
-mod io;
+pub(crate) mod io;
 mod shared;
 mod table;
 

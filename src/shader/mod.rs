@@ -49,12 +49,17 @@
 mod body;
 mod builder;
 mod entry;
+mod model;
 mod names;
 mod tables;
 mod types;
 mod write;
 
 pub use crate::real::TEXTURE_CHANNELS;
+pub use model::{
+    committed_shaders, example_shaders, model_shader, shader_files, table_files, CommittedFile,
+    Language, ModelShader, ModelShaderError, BCSDF_FUNCTION, FRAME_FUNCTION, WORLD_FUNCTION,
+};
 pub use write::{BOUNDS_CHECKS, GLSL_FIRST_TEXTURE_BINDING, MSL_SIZES_BUFFER};
 
 use crate::lut::Table;

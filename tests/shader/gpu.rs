@@ -67,6 +67,25 @@ pub struct GpuTexture {
     pub texels: Vec<[f32; 4]>,
 }
 
+/// The textures of the table bindings of an emitted module, texels from its tables.
+pub fn textures_of(module: &hairmath::shader::ShaderModule) -> Vec<GpuTexture> {
+    let tables = module.tables();
+    module
+        .bindings()
+        .iter()
+        .map(|b| GpuTexture {
+            binding: b.binding,
+            size: b.extent(),
+            dimension: match b.dimension {
+                1 => TextureDimension::D1,
+                2 => TextureDimension::D2,
+                _ => TextureDimension::D3,
+            },
+            texels: b.texels(&tables[b.table]),
+        })
+        .collect()
+}
+
 /// The WebGPU device the shaders run on, created once per test binary (see [`device`]).
 pub struct Device {
     device: wgpu::Device,

@@ -21,6 +21,7 @@ mod lut;
 mod models;
 mod report;
 mod sh;
+mod shader;
 
 use clap::{Parser, Subcommand};
 use std::fmt;
@@ -112,6 +113,23 @@ enum Command {
     /// (Condon-Shortley phase, no conjugates), or of the crate's real SH with --real; shortest
     /// round-trip form, exact zeros print 0. Errors as for `wigner3j`.
     Gaunt(sh::GauntArgs),
+    /// Write a model's shader module, generated from the same Rust code as the CPU evaluation.
+    ///
+    /// The module defines `hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32>` in the local
+    /// frame (tangent +X, wi towards the light, wo towards the viewer; near-field models take
+    /// `h: f32` third), returning S with no cosine factor: what `eval` returns for the same
+    /// flags. `hair_bcsdf_world(tangent, wi, wo, ...)` takes world-space directions and builds
+    /// the local frame as the CPU code does. Every model input is baked as a constant unless
+    /// --varying names it: those become arguments after wo (and h), in the given order.
+    ///
+    /// --lang wgsl writes the functions (and the table bindings) only; wgsl-compute,
+    /// glsl, hlsl, msl and spirv add the compute entry point `hair_main`, which evaluates
+    /// hair_bcsdf over `@group(0) @binding(0)` (rows of the arguments' f32: wi.xyz, wo.xyz,
+    /// then h and the varying inputs) into `@binding(1)` (RGB rows). Models with lookup
+    /// tables bind them as rgba32float textures in `@group(1)`, read with textureLoad and
+    /// interpolated in shader arithmetic; --out is then required, and the tables and a JSON
+    /// description of the bindings are written beside the module.
+    Shader(shader::ShaderArgs),
 }
 
 /// Why a subcommand failed.
@@ -149,6 +167,8 @@ pub enum CliError {
     },
     /// The model comparison failed.
     Comparison(hairmath::fit::ComparisonError),
+    /// A shader could not be made.
+    Shader(String),
     /// Reading or writing failed.
     Io(io::Error),
 }
@@ -184,6 +204,7 @@ impl fmt::Display for CliError {
                 )
             }
             CliError::Comparison(e) => write!(f, "{e}"),
+            CliError::Shader(e) => write!(f, "{e}"),
             CliError::Io(e) => write!(f, "I/O error: {e}"),
         }
     }
@@ -229,6 +250,18 @@ impl From<hairmath::fit::ComparisonError> for CliError {
     }
 }
 
+impl From<hairmath::shader::ModelShaderError> for CliError {
+    fn from(e: hairmath::shader::ModelShaderError) -> Self {
+        CliError::Shader(e.to_string())
+    }
+}
+
+impl From<hairmath::shader::ShaderError> for CliError {
+    fn from(e: hairmath::shader::ShaderError) -> Self {
+        CliError::Shader(e.to_string())
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
@@ -239,6 +272,7 @@ fn main() -> ExitCode {
         Command::Fit(args) => fit::run(args),
         Command::Wigner3j(args) => sh::run_wigner3j(args),
         Command::Gaunt(args) => sh::run_gaunt(args),
+        Command::Shader(args) => shader::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,125 @@
+//! `hairmath shader`: a model's shader module in WGSL, GLSL, HLSL, MSL or SPIR-V
+//! ([`hairmath::shader::model_shader`]), or the repository's `shaders/` folder. This file only
+//! writes what the library emits.
+
+use crate::flags::{model_names, ModelFlags};
+use crate::CliError;
+use clap::builder::PossibleValuesParser;
+use clap::{Args, ValueEnum};
+use hairmath::registry::find_model;
+use hairmath::shader::{committed_shaders, model_shader, table_files, CommittedFile, Language};
+use std::fs;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+
+/// The `--lang` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum LanguageArg {
+    /// WGSL functions, no entry point (import it, or paste it into a shader).
+    Wgsl,
+    /// WGSL with the compute entry point `hair_main` over a storage buffer of rows.
+    WgslCompute,
+    /// WGSL with `#define_import_path hairmath::<model>`, for naga_oil (Bevy).
+    WgslNagaOil,
+    /// Vulkan GLSL 4.50 compute shader (`glslangValidator -V -S comp` accepts it).
+    Glsl,
+    /// HLSL shader model 6.0 compute shader.
+    Hlsl,
+    /// Metal Shading Language 2.0 compute kernel.
+    Msl,
+    /// SPIR-V 1.0 compute shader (binary).
+    Spirv,
+}
+
+impl From<LanguageArg> for Language {
+    fn from(l: LanguageArg) -> Language {
+        match l {
+            LanguageArg::Wgsl => Language::Wgsl,
+            LanguageArg::WgslCompute => Language::WgslCompute,
+            LanguageArg::WgslNagaOil => Language::WgslNagaOil,
+            LanguageArg::Glsl => Language::Glsl,
+            LanguageArg::Hlsl => Language::Hlsl,
+            LanguageArg::Msl => Language::Msl,
+            LanguageArg::Spirv => Language::Spirv,
+        }
+    }
+}
+
+/// Arguments of `hairmath shader`.
+#[derive(Args, Debug)]
+pub struct ShaderArgs {
+    /// The scattering model (`hairmath::registry::MODELS`).
+    #[arg(long, value_parser = PossibleValuesParser::new(model_names()),
+          required_unless_present = "committed")]
+    model: Option<String>,
+    /// The models' inputs, as for `eval`; every input not named by --varying is baked.
+    #[command(flatten)]
+    flags: ModelFlags,
+    /// The language.
+    #[arg(long, value_enum, default_value = "wgsl")]
+    lang: LanguageArg,
+    /// Model inputs that become arguments of hair_bcsdf after wo (and h), in this order, for
+    /// per-pixel values: for example `--varying color,roughness`.
+    #[arg(long, value_delimiter = ',', value_name = "NAME,...")]
+    varying: Vec<String>,
+    /// Write the module to this file instead of standard output; the lookup tables a module
+    /// binds, with their JSON descriptions and a JSON description of the bindings, are written
+    /// beside it (`<stem>.lut<k>.f32`, `<stem>.lut<k>.json`, `<stem>.bindings.json`).
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Write the repository's shaders/ folder (every model at its defaults, WGSL and GLSL,
+    /// tables, README) to DIR instead.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["model", "varying", "out"])]
+    committed: Option<PathBuf>,
+}
+
+/// Runs `hairmath shader`.
+pub fn run(args: &ShaderArgs) -> Result<(), CliError> {
+    if let Some(dir) = &args.committed {
+        return write_files(dir, &committed_shaders()?);
+    }
+    let name = args.model.as_deref().unwrap_or_default();
+    let entry = find_model(name).ok_or_else(|| CliError::UnknownModel(name.to_string()))?;
+    let values = args.flags.values_for(entry)?;
+    let varying: Vec<&str> = args.varying.iter().map(String::as_str).collect();
+    let shader = model_shader(entry, &values, &varying)?;
+    let text = shader.write(args.lang.into())?;
+    let Some(out) = &args.out else {
+        if !shader.module.bindings().is_empty() {
+            return Err(CliError::Shader(format!(
+                "{name} reads lookup tables: give --out FILE so that they are written beside \
+                 the module"
+            )));
+        }
+        let mut stdout = io::stdout().lock();
+        stdout.write_all(&text)?;
+        return Ok(stdout.flush()?);
+    };
+    fs::write(out, &text)?;
+    if shader.module.bindings().is_empty() {
+        return Ok(());
+    }
+    let stem = out
+        .file_stem()
+        .map_or_else(|| name.to_string(), |s| s.to_string_lossy().into_owned());
+    let (tables, mut files) = table_files(&stem, &shader);
+    files.push(CommittedFile {
+        name: format!("{stem}.bindings.json"),
+        contents: shader.bindings_json(&tables).into_bytes(),
+    });
+    write_files(out.parent().unwrap_or(Path::new(".")), &files)
+}
+
+/// Writes `files` into `dir` (created if missing).
+fn write_files(dir: &Path, files: &[CommittedFile]) -> Result<(), CliError> {
+    let dir = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
+    fs::create_dir_all(dir)?;
+    for f in files {
+        fs::write(dir.join(&f.name), &f.contents)?;
+    }
+    Ok(())
+}
