@@ -8,5 +8,6 @@
 //! Under `CI=true` a missing Vulkan adapter or validator fails the tests; elsewhere they are
 //! skipped with a message on stderr.
 
+mod error_bound;
 mod gpu;
 mod tools;
