@@ -125,6 +125,27 @@ pub const MODELS: &[ModelEntry] = &[
 ];
 
 /// The registered model called `name`.
+impl ModelEntry {
+    /// The values of the model's inputs when none is given: each input's default, and for the
+    /// inputs without one (the physical parameters, the absorption) the default hair's
+    /// (`HairParams::default()`), through the model's mapping for a real-time model (whose
+    /// mapped values also replace the defaults). What the committed shaders are emitted at.
+    pub fn example_values(&self) -> InputValues {
+        let hair = HairParams::default();
+        let given = match self.approximation {
+            Some(a) => (a.mapped_inputs)(&hair),
+            None => hair.to_inputs(),
+        };
+        let mut values = InputValues::new();
+        for input in self.inputs {
+            if let Some(value) = given.get(input.name).or_else(|| input.default_value()) {
+                values.set(input.name, value);
+            }
+        }
+        values
+    }
+}
+
 pub fn find_model(name: &str) -> Option<&'static ModelEntry> {
     MODELS.iter().find(|m| m.name == name)
 }

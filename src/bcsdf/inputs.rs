@@ -254,4 +254,33 @@ impl HairParams {
             sigma_a: values.absorption("sigma_a")?.resolve(beta_n)?,
         })
     }
+
+    /// The values of [`HAIR_INPUTS`] of these parameters, the absorption as sigma_a: the
+    /// inverse of [`HairParams::from_inputs`].
+    pub fn to_inputs(&self) -> InputValues {
+        let mut values = InputValues::new();
+        values.set("beta_m", InputValue::Number(self.beta_m.get()));
+        values.set("beta_n", InputValue::Number(self.beta_n.get()));
+        values.set("alpha", InputValue::Number(self.alpha.get()));
+        values.set("eta", InputValue::Number(self.eta.get()));
+        let sigma_a = AbsorptionInput::SigmaA(self.sigma_a.rgb());
+        values.set("sigma_a", InputValue::Absorption(sigma_a));
+        values
+    }
+}
+
+impl Input {
+    /// The value taken when the input is not given: its default (an angle's converted from
+    /// degrees to radians, an RGB default as grey), off for a switch, `None` for a required
+    /// input.
+    pub fn default_value(&self) -> Option<InputValue> {
+        match (self.kind, self.default) {
+            (InputKind::Switch, _) => Some(InputValue::Switch(false)),
+            (InputKind::Angle, Some(d)) => Some(InputValue::Number(d.to_radians())),
+            (InputKind::Count, Some(d)) => Some(InputValue::Count(d as usize)),
+            (InputKind::Rgb, Some(d)) => Some(InputValue::Rgb([d; 3])),
+            (_, Some(d)) => Some(InputValue::Number(d)),
+            (_, None) => None,
+        }
+    }
 }

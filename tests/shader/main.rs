@@ -8,6 +8,8 @@
 //! Under `CI=true` a missing Vulkan adapter or validator fails the tests; elsewhere they are
 //! skipped with a message on stderr.
 
+mod committed;
 mod error_bound;
 mod gpu;
+mod models;
 mod tools;

@@ -257,20 +257,13 @@ impl ModelFlags {
         let mut values = InputValues::new();
         for input in model.inputs {
             let given = self.given.iter().find(|(n, _)| *n == input.name);
-            let value = match (given, input.kind, input.default) {
-                (Some((_, v)), _, _) => *v,
-                (None, InputKind::Switch, _) => InputValue::Switch(false),
-                (None, InputKind::Angle, Some(d)) => InputValue::Number(d.to_radians()),
-                (None, InputKind::Count, Some(d)) => InputValue::Count(d as usize),
-                (None, InputKind::Rgb, Some(d)) => InputValue::Rgb([d; 3]),
-                (None, _, Some(d)) => InputValue::Number(d),
-                (None, _, None) => {
-                    return Err(CliError::MissingFlag {
-                        model: model.name,
-                        flag: flag(input),
-                    })
-                }
-            };
+            let value = given
+                .map(|(_, v)| *v)
+                .or_else(|| input.default_value())
+                .ok_or_else(|| CliError::MissingFlag {
+                    model: model.name,
+                    flag: flag(input),
+                })?;
             values.set(input.name, value);
         }
         Ok(values)
