@@ -3,7 +3,7 @@
 
 use crate::error::ParamError;
 use crate::params::AzimuthalRoughness;
-use crate::real::Real;
+use crate::real::{powi, Real};
 
 /// Absorption coefficient per unit fibre radius, one value per linear RGB channel.
 pub type Rgb = [f64; 3];
@@ -58,9 +58,7 @@ impl Absorption {
         let allowed = "melanin concentrations must be finite and >= 0";
         let eu = ParamError::check("eumelanin", eumelanin, allowed, |v| v >= 0.0)?;
         let ph = ParamError::check("pheomelanin", pheomelanin, allowed, |v| v >= 0.0)?;
-        Self::new(core::array::from_fn(|c| {
-            eu * EUMELANIN_SIGMA_A[c] + ph * PHEOMELANIN_SIGMA_A[c]
-        }))
+        Self::new(sigma_a_of_melanin(eu, ph))
     }
 
     /// sigma_a that gives a multiply-scattered hair volume approximately the colour `color`,
@@ -71,18 +69,15 @@ impl Absorption {
     /// # Errors
     /// A colour channel outside (0, 1] (0 would need infinite absorption).
     pub fn from_color(color: Rgb, beta_n: AzimuthalRoughness) -> Result<Self, ParamError> {
-        let denominator = color_denominator(beta_n);
-        let mut out = [0.0; 3];
-        for (o, &c) in out.iter_mut().zip(&color) {
-            let c = ParamError::check(
+        for &c in &color {
+            ParamError::check(
                 "color",
                 c,
                 "colour channels must be in (0, 1] (linear RGB)",
                 |v| v > 0.0 && v <= 1.0,
             )?;
-            *o = (c.ln() / denominator).powi(2);
         }
-        Self::new(out)
+        Self::new(color.map(|c| sigma_a_of_color(c, beta_n.get())))
     }
 
     /// sigma_a per channel.
@@ -94,8 +89,7 @@ impl Absorption {
     /// channel (D the polynomial of [`Absorption::from_color`]): finite for every absorption,
     /// also where the colour itself underflows.
     pub fn log_color(self, beta_n: AzimuthalRoughness) -> Rgb {
-        let denominator = color_denominator(beta_n);
-        self.0.map(|s| -s.sqrt() * denominator)
+        self.0.map(|s| log_color_of_sigma_a(s, beta_n.get()))
     }
 
     /// The colour whose inversion [`Absorption::from_color`] at `beta_n` gives this absorption:
@@ -110,11 +104,48 @@ impl Absorption {
     }
 }
 
-/// The denominator `5.969 - 0.215 b + 2.532 b^2 - 10.73 b^3 + 5.574 b^4 + 0.245 b^5` of
-/// Chiang et al. 2016's colour mapping (section 4.2), `sqrt(sigma_a) = -ln(c) / D(b)`.
-fn color_denominator(beta_n: AzimuthalRoughness) -> f64 {
-    let b = beta_n.get();
-    5.969 - 0.215 * b + 2.532 * b * b - 10.73 * b.powi(3) + 5.574 * b.powi(4) + 0.245 * b.powi(5)
+/// The denominator `D(b) = 5.969 - 0.215 b + 2.532 b^2 - 10.73 b^3 + 5.574 b^4 + 0.245 b^5` of
+/// Chiang et al. 2016's colour mapping (section 4.2, eq. 9), `sqrt(sigma_a) = -ln(c) / D(b)`
+/// for azimuthal roughness `b = beta_n`. Positive on [0, 1] (its minimum there is 3.38, at
+/// b = 1).
+fn color_denominator<R: Real>(b: R) -> R {
+    R::c(5.969) - R::c(0.215) * b + R::c(2.532) * b * b - R::c(10.73) * powi(b, 3)
+        + R::c(5.574) * powi(b, 4)
+        + R::c(0.245) * powi(b, 5)
+}
+
+/// The smallest colour channel [`sigma_a_of_color`] inverts: a channel at or below 0 (which
+/// would need infinite absorption) is taken as this (sigma_a about 100 at beta_n = 0.3).
+pub const MIN_COLOR: f64 = 1e-30;
+
+/// sigma_a of one linear RGB channel of colour `color` for azimuthal roughness `beta_n`:
+/// Chiang et al. 2016's inversion (section 4.2, eq. 9; pbrt-v4 `SigmaAFromReflectance`),
+/// `sigma_a = (ln c / D(beta_n))^2` with `D` the polynomial of [`Absorption::from_color`].
+///
+/// Domain: `color` in (0, 1] and `beta_n` in (0, 1], which [`Absorption::from_color`]
+/// validates. Shader code cannot reject a value, so here a channel above 1 counts as 1 (no
+/// absorption) and one at or below 0 (or NaN) as [`MIN_COLOR`]; the result is then finite and
+/// non-negative for every `beta_n` in [0, 1] (the caller clamps beta_n).
+pub fn sigma_a_of_color<R: Real>(color: R, beta_n: R) -> R {
+    let c = R::select(R::c(0.0).lt(color), color.min(R::c(1.0)), R::c(MIN_COLOR));
+    (c.ln() / color_denominator(beta_n)).sqr()
+}
+
+/// `ln c = -sqrt(sigma_a) D(beta_n)`, the logarithm of the colour whose inversion
+/// ([`sigma_a_of_color`]) gives `sigma_a` (Chiang et al. 2016, section 4.2, eq. 9, solved for
+/// c), for `sigma_a >= 0`.
+pub fn log_color_of_sigma_a<R: Real>(sigma_a: R, beta_n: R) -> R {
+    -sigma_a.sqrt() * color_denominator(beta_n)
+}
+
+/// sigma_a per linear RGB channel of melanin concentrations:
+/// `eu * EUMELANIN_SIGMA_A + pheo * PHEOMELANIN_SIGMA_A` (Chiang et al. 2016, section 4.2).
+///
+/// Domain: concentrations >= 0, which [`Absorption::from_melanin`] validates; shader code
+/// cannot reject a value, so here a negative concentration (or NaN) counts as 0.
+pub fn sigma_a_of_melanin<R: Real>(eumelanin: R, pheomelanin: R) -> [R; 3] {
+    let (eu, ph) = (eumelanin.max(R::c(0.0)), pheomelanin.max(R::c(0.0)));
+    core::array::from_fn(|c| eu * R::c(EUMELANIN_SIGMA_A[c]) + ph * R::c(PHEOMELANIN_SIGMA_A[c]))
 }
 
 /// How the length of the internal path is modelled.

@@ -38,6 +38,7 @@
 
 use crate::absorption::Absorption;
 use crate::error::ParamError;
+use crate::real::Real;
 
 /// Defines a validated `f64` quantity: the symbol its errors name, its domain in words, the
 /// check, and the conversions.
@@ -143,9 +144,16 @@ impl MarschnerLobes {
     /// `alpha_TRT = -3 alpha_R / 2`, `beta_TT = beta_R / 2`, `beta_TRT = 2 beta_R`
     /// (Marschner 2003, Table 1).
     pub fn lobes(&self) -> [(f64, f64); 3] {
-        let (a, b) = (self.alpha_r.get(), self.beta_r.get());
-        [(a, b), (-a / 2.0, b / 2.0), (-1.5 * a, 2.0 * b)]
+        marschner_lobes(self.alpha_r.get(), self.beta_r.get())
     }
+}
+
+/// (alpha_p, beta_p) for p = R, TT, TRT from the R lobe's shift `alpha_r` and width `beta_r`
+/// (radians): `alpha_TT = -alpha_R / 2`, `alpha_TRT = -3 alpha_R / 2`, `beta_TT = beta_R / 2`,
+/// `beta_TRT = 2 beta_R` (Marschner 2003, Table 1), in the working precision.
+pub fn marschner_lobes<R: Real>(alpha_r: R, beta_r: R) -> [(R, R); 3] {
+    let (a, b, two) = (alpha_r, beta_r, R::c(2.0));
+    [(a, b), (-a / two, b / two), (R::c(-1.5) * a, two * b)]
 }
 
 impl Default for MarschnerLobes {

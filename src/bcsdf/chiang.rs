@@ -21,9 +21,16 @@
 //! along +X. The offset `h` in [-1, 1] locates the point where `wo`'s ray meets the fibre
 //! (gamma_o = asin h), and the relative azimuth of the lobes is phi_i - phi_o, the negative of
 //! [`crate::geometry::FibreAngles::phi`].
+//!
+//! **Varying in shader code** ([`crate::bcsdf::VaryingInputs`]): every input, `beta_m`,
+//! `beta_n`, `alpha`, `eta` and the absorption (`sigma_a`, `color` or `eumelanin` and
+//! `pheomelanin`, the form it is given in); nothing is baked. The shader then derives all of
+//! [`ChiangUniforms`] (variances and d'Eon normalisations, the logistic's scale and mass, the
+//! tilt's sines and cosines, a colour's inversion at the varying beta_n).
 
 use super::inputs::{FromInputs, InputValues, HAIR_INPUTS};
 use super::model::{Bcsdf, HairSample, Model, Query, RandomNumbers, SampledBcsdf};
+use super::varying::{eta_in, roughness_in, tilt_in, InputsIn, VaryingInputs};
 use crate::absorption::PathLength;
 use crate::azimuthal::{exit_angle, FibrePath, Refraction, TrimmedLogistic, LOBES};
 use crate::error::ParamError;
@@ -32,22 +39,34 @@ use crate::geometry::{
 };
 use crate::lobe::{deon_lobe_sample_cos_theta, DeonLobe};
 use crate::params::HairParams;
-use crate::real::{pi, safe_sqrt, wrap_angle, Real, ShaderFunction};
+use crate::real::{pi, powi, safe_sqrt, wrap_angle, Real, ShaderFunction};
 
 /// The names of the four lobes, in the order of every per-lobe array of the Chiang models.
 pub const CHIANG_LOBES: [&str; LOBES] = ["R", "TT", "TRT", "residual"];
 
 /// Longitudinal variance of the R lobe from beta_m (Chiang et al. 2016, eq. 7):
-/// `v = (0.726 b + 0.812 b^2 + 3.7 b^20)^2`.
+/// `v = (0.726 b + 0.812 b^2 + 3.7 b^20)^2`, for beta_m in (0, 1].
 pub fn longitudinal_variance(beta_m: f64) -> f64 {
-    (0.726 * beta_m + 0.812 * beta_m * beta_m + 3.7 * beta_m.powi(20)).powi(2)
+    variance_of(beta_m)
+}
+
+/// [`longitudinal_variance`] in precision `R` (Chiang et al. 2016, eq. 7).
+pub(crate) fn variance_of<R: Real>(beta_m: R) -> R {
+    let b = beta_m;
+    (R::c(0.726) * b + R::c(0.812) * b * b + R::c(3.7) * powi(b, 20)).sqr()
 }
 
 /// Logistic scale from beta_n (Chiang et al. 2016, eq. 8):
-/// `s = sqrt(pi/8) (0.265 b + 1.194 b^2 + 5.372 b^22)`.
+/// `s = sqrt(pi/8) (0.265 b + 1.194 b^2 + 5.372 b^22)`, for beta_n in (0, 1].
 pub fn logistic_scale(beta_n: f64) -> f64 {
-    (core::f64::consts::PI / 8.0).sqrt()
-        * (0.265 * beta_n + 1.194 * beta_n * beta_n + 5.372 * beta_n.powi(22))
+    logistic_scale_of(beta_n)
+}
+
+/// [`logistic_scale`] in precision `R` (Chiang et al. 2016, eq. 8).
+pub(crate) fn logistic_scale_of<R: Real>(beta_n: R) -> R {
+    let b = beta_n;
+    R::c((core::f64::consts::PI / 8.0).sqrt())
+        * (R::c(0.265) * b + R::c(1.194) * b * b + R::c(5.372) * powi(b, 22))
 }
 
 crate::uniform_block! {
@@ -104,22 +123,40 @@ crate::uniform_block! {
 
 impl ChiangUniforms<f64> {
     /// Derives the constants from the physical parameters (pbrt-v4 `HairBxDF` constructor),
-    /// in `f64`.
+    /// in `f64` (the derivation shader code with varying inputs uses too).
     pub fn new(params: &HairParams) -> Self {
-        let v0 = longitudinal_variance(params.beta_m.get());
-        let lobes = [v0, 0.25 * v0, 4.0 * v0].map(DeonLobe::<f64>::new);
-        let logistic = TrimmedLogistic::<f64>::new(logistic_scale(params.beta_n.get()));
+        ChiangUniforms::derive(
+            params.beta_m.get(),
+            params.beta_n.get(),
+            params.alpha.get(),
+            params.eta.get(),
+            params.sigma_a.rgb(),
+        )
+    }
+}
+
+impl<R: Real> ChiangUniforms<R> {
+    /// Derives the constants from the physical parameters in precision `R` (pbrt-v4
+    /// `HairBxDF` constructor): the variances of Chiang et al. 2016's eq. 7 and their d'Eon
+    /// normalisations, the logistic scale of eq. 8 and its mass, the tilt's sines and cosines
+    /// by the double-angle formulas. The one derivation of the uniforms: [`ChiangUniforms::new`]
+    /// in `f64` and shader code with varying inputs ([`crate::bcsdf::VaryingInputs`]) use it.
+    /// Domain as [`HairParams`]: beta_m and beta_n in (0, 1], |alpha| < pi/2, eta in (1, 3],
+    /// sigma_a >= 0 per unit radius.
+    pub(crate) fn derive(beta_m: R, beta_n: R, alpha: R, eta: R, sigma_a: [R; 3]) -> Self {
+        let v0 = variance_of(beta_m);
+        let lobes = [v0, R::c(0.25) * v0, R::c(4.0) * v0].map(DeonLobe::<R>::new);
+        let logistic = TrimmedLogistic::<R>::new(logistic_scale_of(beta_n));
         // sin and cos of alpha, 2 alpha and 4 alpha by the double-angle formulas.
-        let alpha = params.alpha.get();
         let s1 = alpha.sin();
-        let c1 = (1.0 - s1 * s1).max(0.0).sqrt();
-        let (s2, c2) = (2.0 * c1 * s1, c1 * c1 - s1 * s1);
-        let (s4, c4) = (2.0 * c2 * s2, c2 * c2 - s2 * s2);
-        let eta = params.eta.get();
+        let c1 = safe_sqrt(R::c(1.0) - s1 * s1);
+        let two = R::c(2.0);
+        let (s2, c2) = (two * c1 * s1, c1 * c1 - s1 * s1);
+        let (s4, c4) = (two * c2 * s2, c2 * c2 - s2 * s2);
         ChiangUniforms {
             variance_r: v0,
-            variance_tt: 0.25 * v0,
-            variance_trt: 4.0 * v0,
+            variance_tt: R::c(0.25) * v0,
+            variance_trt: R::c(4.0) * v0,
             inv_variance_r: lobes[0].inv_v,
             inv_variance_tt: lobes[1].inv_v,
             inv_variance_trt: lobes[2].inv_v,
@@ -137,8 +174,8 @@ impl ChiangUniforms<f64> {
             sin_4_alpha: s4,
             cos_4_alpha: c4,
             eta,
-            inv_eta: 1.0 / eta,
-            sigma_a: params.sigma_a.rgb(),
+            inv_eta: R::c(1.0) / eta,
+            sigma_a,
         }
     }
 }
@@ -584,6 +621,50 @@ impl FromInputs for ChiangHair<f64> {
     const INPUTS: &'static [super::inputs::Input] = &HAIR_INPUTS;
 
     fn from_inputs(values: &InputValues) -> Result<Self, ParamError> {
-        Ok(ChiangHair::new(&HairParams::from_inputs(values)?))
+        HairParams::from_inputs(values)?;
+        Ok(ChiangHair::from_uniforms(Self::uniforms_in(
+            &InputsIn::constant(values),
+        )))
+    }
+}
+
+/// The inputs of [`HAIR_INPUTS`] that vary in shader code: all of them, the absorption in
+/// each of its forms.
+pub(crate) const HAIR_VARYING: [&str; 8] = [
+    "beta_m",
+    "beta_n",
+    "alpha",
+    "eta",
+    "sigma_a",
+    "color",
+    "eumelanin",
+    "pheomelanin",
+];
+
+/// The uniforms of the Chiang models from the values of [`HAIR_INPUTS`] in precision `R`
+/// ([`ChiangUniforms::derive`], a colour inverted at the hair's beta_n), with the shader's
+/// clamps (`crate::bcsdf::varying`'s module documentation): beta_m and beta_n at or below 0
+/// are [`crate::bcsdf::MIN_ROUGHNESS`], above 1 are 1; alpha is clamped to +-pi/2; eta at or
+/// below 1 is [`crate::bcsdf::MIN_ETA`], above 3 is 3; sigma_a and melanin are at least 0 and
+/// colours in (0, 1].
+pub(crate) fn chiang_uniforms_in<R: Real>(inputs: &InputsIn<R>) -> ChiangUniforms<R> {
+    let beta_n = roughness_in(inputs.number("beta_n"));
+    ChiangUniforms::derive(
+        roughness_in(inputs.number("beta_m")),
+        beta_n,
+        tilt_in(inputs.number("alpha")),
+        eta_in(inputs.number("eta")),
+        inputs.absorption("sigma_a").sigma_a(beta_n),
+    )
+}
+
+impl VaryingInputs for ChiangHair<f64> {
+    const NAME: &'static str = <Self as FromInputs>::NAME;
+    const INPUTS: &'static [super::inputs::Input] = &HAIR_INPUTS;
+    const VARYING: &'static [&'static str] = &HAIR_VARYING;
+    const BAKED: &'static [(&'static str, &'static str)] = &[];
+
+    fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> ChiangUniforms<R> {
+        chiang_uniforms_in(inputs)
     }
 }

@@ -18,12 +18,21 @@
 //! the same nodes, so `value / pdf` is exactly 1 without absorption and the sampler's density is
 //! exactly the returned pdf. Its distance from the exact far field is the rule's integration
 //! error, measured against the reference (README).
+//!
+//! **Varying in shader code** ([`crate::bcsdf::VaryingInputs`], `chiang-far` with its fixed
+//! rule): every input of the near field, `beta_m`, `beta_n`, `alpha`, `eta` and the absorption
+//! (`sigma_a`, `color` or `eumelanin` and `pheomelanin`, the form it is given in). Baked:
+//! `nodes`, the node count, which fixes the loop over the offsets and its constant nodes and
+//! weights. `--reference` has no shader form: its adaptive quadrature refines to a tolerance
+//! with a data-dependent number of evaluations.
 
+use super::chiang::{chiang_uniforms_in, ChiangUniforms, HAIR_VARYING};
 use super::chiang::{
     AzimuthalFactors, ChiangHair, LobeTerms, Offsets, OffsetsIn, Outgoing, PairAngles, CHIANG_LOBES,
 };
 use super::inputs::{FromInputs, Input, InputKind, InputValues, HAIR_INPUTS};
 use super::model::{Bcsdf, Query};
+use super::varying::{InputsIn, VaryingInputs};
 use crate::azimuthal::{exit_angle, refracted_offset, LOBES};
 use crate::error::ParamError;
 use crate::geometry::V3;
@@ -385,7 +394,34 @@ impl FromInputs for FarField {
             )?));
         }
         let rule = FarFieldRule::gauss_legendre(values.count("nodes")?)?;
-        Ok(FarField::Rule(ChiangFarField::with_rule(&params, &rule)))
+        let uniforms = ChiangFarField::uniforms_in(&InputsIn::constant(values));
+        Ok(FarField::Rule(ChiangHair::with_offsets(
+            uniforms,
+            OffsetNodes::new(&rule),
+        )))
+    }
+}
+
+/// Why `chiang-far --reference` has no shader form.
+pub const REFERENCE_NO_SHADER_FORM: &str = "the reference integrator's adaptive quadrature \
+    refines to a tolerance with a data-dependent number of evaluations, which shader code \
+    cannot do (the fixed rule, --nodes, traces)";
+
+impl VaryingInputs for ChiangFarField<f64> {
+    const NAME: &'static str = <FarField as FromInputs>::NAME;
+    const INPUTS: &'static [Input] = &FAR_FIELD_INPUTS;
+    const VARYING: &'static [&'static str] = &HAIR_VARYING;
+    const BAKED: &'static [(&'static str, &'static str)] = &[
+        (
+            "nodes",
+            "the node count fixes the shader's loop over the offsets h and its constant nodes \
+             and weights",
+        ),
+        ("reference", REFERENCE_NO_SHADER_FORM),
+    ];
+
+    fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> ChiangUniforms<R> {
+        chiang_uniforms_in(inputs)
     }
 }
 

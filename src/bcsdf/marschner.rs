@@ -10,6 +10,11 @@
 //! factor (radiance is `int S L_i dw_i`), so [`Bcsdf::eval`] returns
 //! `S = sum_p M_p N_p cos(theta_i) / cos^2(theta_d)`. The model does not conserve energy (its
 //! Gaussians are not normalised over the sphere, and the caustic treatment adds energy).
+//!
+//! **Varying in shader code:** none; the model has no shader form
+//! ([`crate::registry::MARSCHNER_NO_SHADER_FORM`]: its N_p finds the exit offsets by root
+//! finding). `nguyen-donnelly` is the same model through lookup textures, and its shader is
+//! the baked one.
 
 use super::inputs::{FromInputs, Input, InputKind, InputValues, HAIR_INPUTS};
 use super::model::{Bcsdf, Query};

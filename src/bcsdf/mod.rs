@@ -10,7 +10,9 @@
 //! [`crate::real::Real`]), [`Model`] (uniforms from the parameters, the model from the
 //! uniforms) and [`FromInputs`] (its name and named inputs); then one line in
 //! [`crate::registry::MODELS`] makes `hairmath eval --model NAME` accept it. The README shows an
-//! example.
+//! example. [`VaryingInputs`] (the uniforms derived once, generic over the precision, from the
+//! inputs) gives it shader code with varying inputs ([`trace_shader`]) and, registered with
+//! [`crate::registry::ModelEntry::with_shader`], a shader form in the registry.
 
 mod batch;
 mod chiang;
@@ -18,15 +20,18 @@ mod far_field;
 mod inputs;
 mod marschner;
 mod model;
+mod varying;
 
 pub use batch::{eval_batch, pdf_batch, BatchEval, BatchLanes, BatchLengthError, BatchReal, LANES};
+pub(crate) use chiang::variance_of;
 pub use chiang::{
     logistic_scale, longitudinal_variance, AtOffset, AzimuthalFactors, ChiangHair, ChiangUniforms,
     Offsets, OffsetsIn, Outgoing, CHIANG_LOBES,
 };
 pub use far_field::{
     ChiangFarField, FarField, FarFieldReference, FarFieldRule, OffsetNodes, ReferenceFarField,
-    DEFAULT_FAR_FIELD_NODES, FAR_FIELD_ERROR_BOUNDS, MAX_FAR_FIELD_NODES, REFERENCE_REL_TOL,
+    DEFAULT_FAR_FIELD_NODES, FAR_FIELD_ERROR_BOUNDS, MAX_FAR_FIELD_NODES, REFERENCE_NO_SHADER_FORM,
+    REFERENCE_REL_TOL,
 };
 pub use inputs::{
     AbsorptionInput, FromInputs, Input, InputKind, InputValue, InputValues, HAIR_INPUTS,
@@ -36,4 +41,9 @@ pub use model::{
     query_of, query_parameters, sum_lobes, trace_eval, trace_eval_with, trace_model, traced_inputs,
     Bcsdf, HairSample, Model, Query, RandomNumbers, SampledBcsdf, UniformBlock, UniformField,
     UniformValue, UniformsIn,
+};
+pub(crate) use varying::{clamp_closed, clamp_open_closed, eta_in, roughness_in, tilt_in};
+pub use varying::{
+    trace_shader, varying_names, AbsorptionIn, InputsIn, ShaderInputError, ShaderInputs, ValueIn,
+    VaryingInputs, MIN_ETA, MIN_ROUGHNESS,
 };

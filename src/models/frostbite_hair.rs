@@ -114,6 +114,14 @@
 //! [`Approximation::FITTED_INPUTS`]: `beta_m`, `beta_n`, `sigma_a` (the three that shape the
 //! lobes' widths, the TT and TRT distributions and the colour; alpha and eta only shift the
 //! lobes and scale the Fresnel terms).
+//!
+//! # Varying in shader code
+//!
+//! ([`crate::bcsdf::VaryingInputs`]) Every input: `beta_m`, `beta_n` (also the TT table's
+//! coordinate, read where the shader computes it), `alpha`, `eta` and the absorption
+//! (`sigma_a`, `color` or `eumelanin` and `pheomelanin`, the form it is given in); nothing is
+//! baked (the TT table is the same for every hair). Out of their domains the inputs are
+//! clamped as Chiang's ([`crate::bcsdf::ChiangHair`]).
 
 use core::marker::PhantomData;
 use std::sync::OnceLock;
@@ -128,8 +136,8 @@ use super::unreal::{chiang_r_width_in_sines, r_azimuthal, Published, Refitted};
 use crate::absorption::PathLength;
 use crate::azimuthal::Refraction;
 use crate::bcsdf::{
-    sum_lobes, AbsorptionInput, Bcsdf, FromInputs, Input, InputValue, InputValues, Model, Query,
-    HAIR_INPUTS,
+    eta_in, roughness_in, sum_lobes, tilt_in, AbsorptionInput, Bcsdf, FromInputs, Input,
+    InputValue, InputValues, InputsIn, Model, Query, VaryingInputs, HAIR_INPUTS,
 };
 use crate::error::ParamError;
 use crate::geometry::local_fibre_angles;
@@ -178,7 +186,12 @@ impl FrostbiteVariant for Refitted {
 /// `clamp` read as HLSL's `saturate`): 1 for beta_n <= 1/3, falling linearly to 0 at
 /// beta_n = 1.
 pub fn frostbite_trt_scale(beta_n: AzimuthalRoughness) -> f64 {
-    (1.5 * (1.0 - beta_n.get())).clamp(0.0, 1.0)
+    trt_scale_of(beta_n.get())
+}
+
+/// [`frostbite_trt_scale`] in precision `R` (Tafuri 2019, slide 21).
+fn trt_scale_of<R: Real>(beta_n: R) -> R {
+    (R::c(1.5) * (R::c(1.0) - beta_n)).clamp(R::c(0.0), R::c(1.0))
 }
 
 /// Frostbite's TRT distribution `D_TRT(phi) = s_r exp(s_r (a cos phi + b))` (Tafuri 2019,
@@ -274,26 +287,62 @@ pub type FrostbiteRefit<R> = FrostbiteHair<R, Refitted>;
 impl<V: FrostbiteVariant> FrostbiteHair<f64, V> {
     /// The model of the hair `hair`.
     pub fn new(hair: &HairParams) -> Self {
-        let width = chiang_r_width_in_sines(hair.beta_m).max(MIN_WIDTH);
-        let alpha = hair.alpha.get();
-        let sigma_a = hair.sigma_a.rgb().map(|s| s.min(MAX_SIGMA_A));
+        Self::with_uniforms_of(frostbite_uniforms(
+            hair.beta_m.get(),
+            hair.beta_n.get(),
+            hair.alpha.get(),
+            hair.eta.get(),
+            hair.sigma_a.rgb(),
+        ))
+    }
+
+    /// The model reading `uniforms` and the shared TT table.
+    fn with_uniforms_of(uniforms: FrostbiteUniforms<f64>) -> Self {
         FrostbiteHair {
-            uniforms: FrostbiteUniforms {
-                width_r: width,
-                width_tt: 0.5 * width,
-                width_trt: 2.0 * width,
-                shift_r: 2.0 * alpha.sin(),
-                shift_tt: -2.0 * (0.5 * alpha).sin(),
-                shift_trt: -2.0 * (1.5 * alpha).sin(),
-                eta: hair.eta.get().max(MIN_ETA),
-                sigma_a,
-                beta_n: hair.beta_n.get(),
-                trt_scale: frostbite_trt_scale(hair.beta_n),
-            },
+            uniforms,
             tt_table: frostbite_tt_table(),
             variant: PhantomData,
         }
     }
+}
+
+/// The Frostbite models' uniforms in precision `R` from the hair's parameters (module
+/// documentation: the widths from beta_m as Karis' Roughness mapping, the centres
+/// `2 sin(alpha_p)`, eta floored at `1 + 2^-20`, sigma_a clamped at 1e30, beta_n and `s_r`):
+/// the one derivation of [`FrostbiteHair::new`] and of shader code with varying inputs.
+fn frostbite_uniforms<R: Real>(
+    beta_m: R,
+    beta_n: R,
+    alpha: R,
+    eta: R,
+    sigma_a: [R; 3],
+) -> FrostbiteUniforms<R> {
+    let width = chiang_r_width_in_sines(beta_m).max(R::c(MIN_WIDTH));
+    let two = R::c(2.0);
+    FrostbiteUniforms {
+        width_r: width,
+        width_tt: R::c(0.5) * width,
+        width_trt: two * width,
+        shift_r: two * alpha.sin(),
+        shift_tt: R::c(-2.0) * (R::c(0.5) * alpha).sin(),
+        shift_trt: R::c(-2.0) * (R::c(1.5) * alpha).sin(),
+        eta: eta.max(R::c(MIN_ETA)),
+        sigma_a: sigma_a.map(|s| s.min(R::c(MAX_SIGMA_A))),
+        beta_n,
+        trt_scale: trt_scale_of(beta_n),
+    }
+}
+
+/// The Frostbite models' uniforms from the values of [`HAIR_INPUTS`], clamped as Chiang's.
+fn frostbite_uniforms_in<R: Real>(inputs: &InputsIn<R>) -> FrostbiteUniforms<R> {
+    let beta_n = roughness_in(inputs.number("beta_n"));
+    frostbite_uniforms(
+        roughness_in(inputs.number("beta_m")),
+        beta_n,
+        tilt_in(inputs.number("alpha")),
+        eta_in(inputs.number("eta")),
+        inputs.absorption("sigma_a").sigma_a(beta_n),
+    )
 }
 
 impl<R, V> FrostbiteHair<R, V> {
@@ -440,7 +489,10 @@ impl FromInputs for Frostbite<f64> {
     const INPUTS: &'static [Input] = &HAIR_INPUTS;
 
     fn from_inputs(values: &InputValues) -> Result<Self, ParamError> {
-        Ok(Self::new(&HairParams::from_inputs(values)?))
+        HairParams::from_inputs(values)?;
+        Ok(Self::with_uniforms_of(Self::uniforms_in(
+            &InputsIn::constant(values),
+        )))
     }
 }
 
@@ -451,7 +503,44 @@ impl FromInputs for FrostbiteRefit<f64> {
     const INPUTS: &'static [Input] = &HAIR_INPUTS;
 
     fn from_inputs(values: &InputValues) -> Result<Self, ParamError> {
-        Ok(Self::new(&HairParams::from_inputs(values)?))
+        HairParams::from_inputs(values)?;
+        Ok(Self::with_uniforms_of(Self::uniforms_in(
+            &InputsIn::constant(values),
+        )))
+    }
+}
+
+/// The inputs of [`HAIR_INPUTS`] in shader code: all of them, the absorption in each form.
+const FROSTBITE_VARYING: [&str; 8] = [
+    "beta_m",
+    "beta_n",
+    "alpha",
+    "eta",
+    "sigma_a",
+    "color",
+    "eumelanin",
+    "pheomelanin",
+];
+
+impl VaryingInputs for Frostbite<f64> {
+    const NAME: &'static str = <Self as FromInputs>::NAME;
+    const INPUTS: &'static [Input] = &HAIR_INPUTS;
+    const VARYING: &'static [&'static str] = &FROSTBITE_VARYING;
+    const BAKED: &'static [(&'static str, &'static str)] = &[];
+
+    fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> FrostbiteUniforms<R> {
+        frostbite_uniforms_in(inputs)
+    }
+}
+
+impl VaryingInputs for FrostbiteRefit<f64> {
+    const NAME: &'static str = <Self as FromInputs>::NAME;
+    const INPUTS: &'static [Input] = &HAIR_INPUTS;
+    const VARYING: &'static [&'static str] = &FROSTBITE_VARYING;
+    const BAKED: &'static [(&'static str, &'static str)] = &[];
+
+    fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> FrostbiteUniforms<R> {
+        frostbite_uniforms_in(inputs)
     }
 }
 

@@ -56,11 +56,22 @@
 //! [`crate::models::NguyenDonnelly`] gives the reasons), with the paper's lobe and exponents
 //! (both switches off): the mapping measures Gerard's model as published.
 //! [`crate::models::Approximation::FITTED_INPUTS`]: `alpha_r`, `beta_r`, `sigma_a`.
+//!
+//! **Varying in shader code** ([`crate::bcsdf::VaryingInputs`]): `alpha_r`, `beta_r` (the
+//! shader evaluates the g(beta) closed forms and Marschner's Table 1) and the absorption
+//! (`sigma_a`, `color` or `eumelanin` and `pheomelanin`, the form it is given in; a colour is
+//! inverted at beta_n = 0.3). Baked: `eta` and `no_caustic` (the table is baked with them),
+//! the switches `hg_normalised` and `refit_absorption` (they select the lobe and the exponents)
+//! and, with `hg_normalised`, `beta_r` too: the normalised lobe's factor is an elliptic
+//! integral computed once in `f64`. Out of their domains |alpha_r| is clamped to 22.5 degrees
+//! and beta_r to 45 degrees, and beta_r at or below 0 is 1 degree (the closed forms' lower
+//! end).
 
 use super::nguyen_donnelly::MIN_COS2_THETA_D;
 use crate::bcsdf::{
-    sum_lobes, Bcsdf, FromInputs, Input, InputKind, InputValue, InputValues, Marschner2003, Model,
-    Query, MARSCHNER_LOBES,
+    clamp_closed, clamp_open_closed, sum_lobes, Bcsdf, FromInputs, Input, InputKind, InputValue,
+    InputValues, InputsIn, Marschner2003, Model, Query, VaryingInputs, COLOR_BETA_N,
+    MARSCHNER_LOBES,
 };
 use crate::error::ParamError;
 use crate::geometry::local_fibre_angles;
@@ -68,9 +79,9 @@ use crate::lobe::{hg_gerard_printed, HenyeyGreenstein};
 use crate::lut::{bake, GerardN, SharedTable};
 use crate::models::{
     gerard_attenuation, gerard_hg_g, hg_g_normalised, marschner_inputs_of, Approximation,
-    GERARD_ABSORPTION_K_TRT, GERARD_ABSORPTION_K_TT, GERARD_K_TRT, GERARD_K_TT,
+    GERARD_ABSORPTION_K_TRT, GERARD_ABSORPTION_K_TT, GERARD_K_TRT, GERARD_K_TT, HG_G_BETA_DOMAIN,
 };
-use crate::params::HairParams;
+use crate::params::{marschner_lobes, HairParams, MarschnerLobes};
 use crate::real::Real;
 
 /// Texels of the N_p,LUT table (|phi| x |theta_d|).
@@ -132,21 +143,83 @@ pub enum GerardLobe {
 }
 
 impl GerardLobe {
-    /// (g, factor on eq. 6) for a lobe of width `beta` radians.
+    /// g of a lobe of width `beta` radians: Gerard's literal closed form ([`gerard_hg_g`]) or
+    /// that of the normalised lobe ([`hg_g_normalised`]).
+    fn g<R: Real>(self, beta: R) -> R {
+        match self {
+            GerardLobe::Printed => gerard_hg_g(beta),
+            GerardLobe::Normalised => hg_g_normalised(beta),
+        }
+    }
+
+    /// The factor on eq. 6 of a lobe of width `beta` radians: 1 as printed, the normalised
+    /// lobe's ratio to the printed one ([`HenyeyGreenstein`], computed in `f64`).
     ///
     /// # Errors
     /// Never for the closed forms' g (within (0.4, 0.99)); the check of [`HenyeyGreenstein`].
-    fn g_and_scale(self, beta: f64) -> Result<(f64, f64), ParamError> {
+    fn scale(self, beta: f64) -> Result<f64, ParamError> {
         match self {
-            GerardLobe::Printed => Ok((gerard_hg_g(beta), 1.0)),
+            GerardLobe::Printed => Ok(1.0),
             GerardLobe::Normalised => {
-                let g = hg_g_normalised(beta);
+                let g = self.g(beta);
                 // Both lobes share the shape; the ratio is the normalised lobe's factor.
-                let ratio = HenyeyGreenstein::new(g)?.eval(1.0) / hg_gerard_printed(g, 1.0);
-                Ok((g, ratio))
+                Ok(HenyeyGreenstein::new(g)?.eval(1.0) / hg_gerard_printed(g, 1.0))
             }
         }
     }
+
+    /// The factors of the R, TT and TRT lobes of Marschner's `lobes`.
+    fn scales(self, lobes: &MarschnerLobes) -> Result<[f64; 3], ParamError> {
+        let [(_, b_r), (_, b_tt), (_, b_trt)] = lobes.lobes();
+        Ok([self.scale(b_r)?, self.scale(b_tt)?, self.scale(b_trt)?])
+    }
+}
+
+/// Gerard's uniforms in precision `R` from Marschner's R lobe `alpha_r`, `beta_r` (radians;
+/// the other lobes by his Table 1, [`marschner_lobes`]), the lobe variant and its factors
+/// ([`GerardLobe::scales`]), the absorption and its exponents: the one derivation of
+/// [`Gerard::new`] and of shader code with varying inputs.
+fn gerard_uniforms<R: Real>(
+    alpha_r: R,
+    beta_r: R,
+    lobe: GerardLobe,
+    scales: [R; 3],
+    sigma_a: [R; 3],
+    [k_tt, k_trt]: [R; 2],
+) -> GerardUniforms<R> {
+    let [(a_r, b_r), (a_tt, b_tt), (a_trt, b_trt)] = marschner_lobes(alpha_r, beta_r);
+    GerardUniforms {
+        g_r: lobe.g(b_r),
+        g_tt: lobe.g(b_tt),
+        g_trt: lobe.g(b_trt),
+        lobe_scale_r: scales[0],
+        lobe_scale_tt: scales[1],
+        lobe_scale_trt: scales[2],
+        alpha_r: a_r,
+        alpha_tt: a_tt,
+        alpha_trt: a_trt,
+        sigma_a,
+        k_tt,
+        k_trt,
+        min_cos2_theta_d: R::c(MIN_COS2_THETA_D),
+    }
+}
+
+/// The lobe variant and the absorption exponents the switches `hg_normalised` and
+/// `refit_absorption` select.
+fn switched(hg_normalised: bool, refit_absorption: bool) -> (GerardLobe, [f64; 2]) {
+    let lobe = match hg_normalised {
+        true => GerardLobe::Normalised,
+        false => GerardLobe::Printed,
+    };
+    let k = match refit_absorption {
+        true => [
+            GERARD_ABSORPTION_K_TT[GERARD_REFIT_ENTRY],
+            GERARD_ABSORPTION_K_TRT[GERARD_REFIT_ENTRY],
+        ],
+        false => [GERARD_K_TT, GERARD_K_TRT],
+    };
+    (lobe, k)
 }
 
 impl Gerard<f64> {
@@ -163,33 +236,16 @@ impl Gerard<f64> {
         k_trt: f64,
     ) -> Result<Self, ParamError> {
         let check = |name, k| ParamError::check(name, k, "must be finite and >= 0", |v| v >= 0.0);
-        let (k_tt, k_trt) = (check("k_tt", k_tt)?, check("k_trt", k_trt)?);
-        let [(a_r, b_r), (a_tt, b_tt), (a_trt, b_trt)] = source.lobes.lobes();
-        let [(g_r, s_r), (g_tt, s_tt), (g_trt, s_trt)] = [
-            lobe.g_and_scale(b_r)?,
-            lobe.g_and_scale(b_tt)?,
-            lobe.g_and_scale(b_trt)?,
-        ];
+        let k = [check("k_tt", k_tt)?, check("k_trt", k_trt)?];
+        let scales = lobe.scales(&source.lobes)?;
         let baker = GerardN::new(source.eta, core::f64::consts::FRAC_PI_2, source.caustic)?;
         let table = bake(&baker, &GERARD_N_SIZES)
             .and_then(SharedTable::new)
             .unwrap_or_else(|e| unreachable!("the table sizes are valid: {e}"));
+        let (alpha_r, beta_r) = (source.lobes.alpha_r.get(), source.lobes.beta_r.get());
+        let sigma_a = source.sigma_a.rgb();
         Ok(Gerard {
-            uniforms: GerardUniforms {
-                g_r,
-                g_tt,
-                g_trt,
-                lobe_scale_r: s_r,
-                lobe_scale_tt: s_tt,
-                lobe_scale_trt: s_trt,
-                alpha_r: a_r,
-                alpha_tt: a_tt,
-                alpha_trt: a_trt,
-                sigma_a: source.sigma_a.rgb(),
-                k_tt,
-                k_trt,
-                min_cos2_theta_d: MIN_COS2_THETA_D,
-            },
+            uniforms: gerard_uniforms(alpha_r, beta_r, lobe, scales, sigma_a, k),
             n: table,
         })
     }
@@ -290,18 +346,75 @@ impl FromInputs for Gerard<f64> {
 
     fn from_inputs(values: &InputValues) -> Result<Self, ParamError> {
         let source = Marschner2003::from_inputs(values)?;
-        let lobe = match values.switch("hg_normalised")? {
-            true => GerardLobe::Normalised,
-            false => GerardLobe::Printed,
-        };
-        let (k_tt, k_trt) = match values.switch("refit_absorption")? {
-            true => (
-                GERARD_ABSORPTION_K_TT[GERARD_REFIT_ENTRY],
-                GERARD_ABSORPTION_K_TRT[GERARD_REFIT_ENTRY],
-            ),
-            false => (GERARD_K_TT, GERARD_K_TRT),
-        };
+        let (lobe, [k_tt, k_trt]) = switched(
+            values.switch("hg_normalised")?,
+            values.switch("refit_absorption")?,
+        );
         Gerard::new(&source, lobe, k_tt, k_trt)
+    }
+}
+
+/// Why the index and the caustic treatment are baked.
+const IN_THE_TABLE: &str = "the N_p table is baked with it when the model is built (a new value \
+    is a new table)";
+/// Why the switches are baked.
+const SELECTS: &str = "a switch selects the shader's formulas";
+/// Why beta_r is baked with `hg_normalised`.
+const NORMALISED_BETA_R: &str = "with hg_normalised the lobes' normalisation is an elliptic \
+    integral computed once in f64 (an arithmetic-geometric mean iterated to convergence)";
+
+impl VaryingInputs for Gerard<f64> {
+    const NAME: &'static str = <Self as FromInputs>::NAME;
+    const INPUTS: &'static [Input] = <Self as FromInputs>::INPUTS;
+    const VARYING: &'static [&'static str] = &[
+        "alpha_r",
+        "beta_r",
+        "sigma_a",
+        "color",
+        "eumelanin",
+        "pheomelanin",
+    ];
+    const BAKED: &'static [(&'static str, &'static str)] = &[
+        ("eta", IN_THE_TABLE),
+        ("no_caustic", IN_THE_TABLE),
+        ("hg_normalised", SELECTS),
+        ("refit_absorption", SELECTS),
+    ];
+
+    fn baked_for(values: &InputValues, name: &str) -> Option<&'static str> {
+        let normalised = values.switch("hg_normalised").unwrap_or(false);
+        (name == "beta_r" && normalised).then_some(NORMALISED_BETA_R)
+    }
+
+    /// [`Gerard::new`]'s uniforms from the inputs (the module documentation gives the
+    /// clamps).
+    fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> GerardUniforms<R> {
+        let (lobe, k) = switched(
+            inputs.switch("hg_normalised"),
+            inputs.switch("refit_absorption"),
+        );
+        let max_shift = core::f64::consts::PI / 8.0;
+        let alpha_r = clamp_closed(inputs.number("alpha_r"), -max_shift, max_shift);
+        let beta_r = clamp_open_closed(
+            inputs.number("beta_r"),
+            0.0,
+            core::f64::consts::FRAC_PI_4,
+            HG_G_BETA_DOMAIN.0,
+        );
+        let scales = match lobe {
+            GerardLobe::Printed => [R::c(1.0); 3],
+            // beta_r does not vary with the normalised lobe (`baked_for`): its given value.
+            GerardLobe::Normalised => {
+                let lobes = Marschner2003::from_inputs(inputs.given())
+                    .unwrap_or_else(|e| panic!("the values the model was built from: {e}"))
+                    .lobes;
+                lobe.scales(&lobes)
+                    .unwrap_or_else(|e| unreachable!("the closed forms' g is valid: {e}"))
+                    .map(R::c)
+            }
+        };
+        let sigma_a = inputs.absorption("sigma_a").sigma_a(R::c(COLOR_BETA_N));
+        gerard_uniforms(alpha_r, beta_r, lobe, scales, sigma_a, k.map(R::c))
     }
 }
 

@@ -94,6 +94,12 @@
 //!   direction pairs uniform on the two spheres).
 //!
 //! **Fitted inputs** ([`Approximation::FITTED_INPUTS`]): every weight, exponent and shift.
+//!
+//! **Varying in shader code** ([`crate::bcsdf::VaryingInputs`]): every input (Kajiya-Kay:
+//! `kd`, `ks`, `exponent`; TressFX: `kd`, `ks_primary`, `exponent_primary`, `shift_primary`,
+//! `ks_secondary`, `exponent_secondary`, `shift_secondary`); nothing is baked. Out of their
+//! domains a weight is clamped to [0, 1e6], an exponent at or below 0 is 1e-6 and above 1e6
+//! is 1e6; a shift is wrapped into [-pi, pi] before its sine and cosine (which changes neither).
 
 use super::approximation::Approximation;
 use crate::absorption::{PathLength, Rgb};
@@ -102,6 +108,7 @@ use crate::bcsdf::{
     longitudinal_variance, sum_lobes, Bcsdf, FromInputs, Input, InputKind, InputValue, InputValues,
     Model, Query,
 };
+use crate::bcsdf::{InputsIn, VaryingInputs};
 use crate::error::ParamError;
 use crate::geometry::{local_sin_cos_theta, V3};
 use crate::params::HairParams;
@@ -211,6 +218,29 @@ pub(crate) fn exponent_input(values: &InputValues, name: &'static str) -> Result
         values.number(name)?,
         "exponents must be in (0, 1e6]",
         |v| v > 0.0 && v <= MAX_EXPONENT,
+    )
+}
+
+/// The smallest exponent shader code uses: an exponent at or below 0, which the CPU rejects,
+/// is this there.
+pub(crate) const MIN_EXPONENT: f64 = 1e-6;
+
+/// A weight per channel in shader code: clamped to [0, [`MAX_WEIGHT`]].
+#[inline(always)]
+pub(crate) fn weight_in<R: Real>(inputs: &InputsIn<R>, name: &str) -> [R; 3] {
+    inputs
+        .rgb(name)
+        .map(|w| w.max(R::c(0.0)).min(R::c(MAX_WEIGHT)))
+}
+
+/// An exponent in shader code: in (0, [`MAX_EXPONENT`]], [`MIN_EXPONENT`] at or below 0.
+#[inline(always)]
+pub(crate) fn exponent_in<R: Real>(inputs: &InputsIn<R>, name: &str) -> R {
+    let e = inputs.number(name);
+    R::select(
+        R::c(0.0).lt(e),
+        e.min(R::c(MAX_EXPONENT)),
+        R::c(MIN_EXPONENT),
     )
 }
 
@@ -425,13 +455,28 @@ impl FromInputs for KajiyaKay<f64> {
     ];
 
     fn from_inputs(values: &InputValues) -> Result<Self, ParamError> {
+        weight_input(values, "kd")?;
+        weight_input(values, "ks")?;
+        exponent_input(values, "exponent")?;
         Ok(KajiyaKay {
-            uniforms: KajiyaKayUniforms {
-                kd: weight_input(values, "kd")?,
-                ks: weight_input(values, "ks")?,
-                exponent: exponent_input(values, "exponent")?,
-            },
+            uniforms: Self::uniforms_in(&InputsIn::constant(values)),
         })
+    }
+}
+
+impl VaryingInputs for KajiyaKay<f64> {
+    const NAME: &'static str = <Self as FromInputs>::NAME;
+    const INPUTS: &'static [Input] = <Self as FromInputs>::INPUTS;
+    const VARYING: &'static [&'static str] = &["kd", "ks", "exponent"];
+    const BAKED: &'static [(&'static str, &'static str)] = &[];
+
+    /// The inputs themselves (a weight clamped to [0, 1e6], an exponent to (0, 1e6]).
+    fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> KajiyaKayUniforms<R> {
+        KajiyaKayUniforms {
+            kd: weight_in(inputs, "kd"),
+            ks: weight_in(inputs, "ks"),
+            exponent: exponent_in(inputs, "exponent"),
+        }
     }
 }
 
@@ -626,21 +671,50 @@ impl FromInputs for TressFx<f64> {
 
     fn from_inputs(values: &InputValues) -> Result<Self, ParamError> {
         let allowed = "the shift must be a finite angle";
-        let shift_primary = finite_input(values, "shift_primary", allowed)?;
-        let shift_secondary = finite_input(values, "shift_secondary", allowed)?;
+        finite_input(values, "shift_primary", allowed)?;
+        finite_input(values, "shift_secondary", allowed)?;
+        for name in ["kd", "ks_primary", "ks_secondary"] {
+            weight_input(values, name)?;
+        }
+        exponent_input(values, "exponent_primary")?;
+        exponent_input(values, "exponent_secondary")?;
         Ok(TressFx {
-            uniforms: TressFxUniforms {
-                kd: weight_input(values, "kd")?,
-                ks_primary: weight_input(values, "ks_primary")?,
-                exponent_primary: exponent_input(values, "exponent_primary")?,
-                cos_shift_primary: shift_primary.cos(),
-                sin_shift_primary: shift_primary.sin(),
-                ks_secondary: weight_input(values, "ks_secondary")?,
-                exponent_secondary: exponent_input(values, "exponent_secondary")?,
-                cos_shift_secondary: shift_secondary.cos(),
-                sin_shift_secondary: shift_secondary.sin(),
-            },
+            uniforms: Self::uniforms_in(&InputsIn::constant(values)),
         })
+    }
+}
+
+impl VaryingInputs for TressFx<f64> {
+    const NAME: &'static str = <Self as FromInputs>::NAME;
+    const INPUTS: &'static [Input] = <Self as FromInputs>::INPUTS;
+    const VARYING: &'static [&'static str] = &[
+        "kd",
+        "ks_primary",
+        "exponent_primary",
+        "shift_primary",
+        "ks_secondary",
+        "exponent_secondary",
+        "shift_secondary",
+    ];
+    const BAKED: &'static [(&'static str, &'static str)] = &[];
+
+    /// The weights and exponents themselves (clamped as Kajiya-Kay's), the cosine and sine
+    /// of each shift wrapped into [-pi, pi] ([`wrap_angle`]: exact for shifts already there,
+    /// and the range where shader `sin` and `cos` are accurate).
+    fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> TressFxUniforms<R> {
+        let shift_primary = wrap_angle(inputs.number("shift_primary"));
+        let shift_secondary = wrap_angle(inputs.number("shift_secondary"));
+        TressFxUniforms {
+            kd: weight_in(inputs, "kd"),
+            ks_primary: weight_in(inputs, "ks_primary"),
+            exponent_primary: exponent_in(inputs, "exponent_primary"),
+            cos_shift_primary: shift_primary.cos(),
+            sin_shift_primary: shift_primary.sin(),
+            ks_secondary: weight_in(inputs, "ks_secondary"),
+            exponent_secondary: exponent_in(inputs, "exponent_secondary"),
+            cos_shift_secondary: shift_secondary.cos(),
+            sin_shift_secondary: shift_secondary.sin(),
+        }
     }
 }
 

@@ -93,11 +93,17 @@
 //!   smooth in azimuth).
 //!
 //! [`crate::models::Approximation::FITTED_INPUTS`]: `alpha_r`, `beta_r`, `sigma_a`.
+//!
+//! **Varying in shader code** ([`crate::bcsdf::VaryingInputs`]): none. Every input is baked
+//! into the textures (alpha_r and beta_r into M; eta, the absorption and the caustic treatment
+//! into N), which are tabulated in `f64` when the model is built; the shader's only uniform is
+//! a constant.
 
 use crate::absorption::Absorption;
 use crate::bcsdf::{
     longitudinal_variance, sum_lobes, AbsorptionInput, Bcsdf, FromInputs, Input, InputValue,
-    InputValues, Marschner2003, Model, Query, COLOR_BETA_N, MARSCHNER_LOBES,
+    InputValues, InputsIn, Marschner2003, Model, Query, VaryingInputs, COLOR_BETA_N,
+    MARSCHNER_LOBES,
 };
 use crate::error::ParamError;
 use crate::geometry::{local_sin_cos_theta, V3};
@@ -137,6 +143,13 @@ pub struct NguyenDonnelly<R> {
     source: Marschner2003,
 }
 
+/// The uniforms of [`NguyenDonnelly`], which depend on no input.
+fn nguyen_donnelly_uniforms<R: Real>() -> NguyenDonnellyUniforms<R> {
+    NguyenDonnellyUniforms {
+        min_cos2_theta_d: R::c(MIN_COS2_THETA_D),
+    }
+}
+
 impl NguyenDonnelly<f64> {
     /// The textures of `source` baked at [`NGUYEN_DONNELLY_M_SIZES`] and
     /// [`NGUYEN_DONNELLY_N_SIZES`] (about 20 ms in an optimised build).
@@ -156,9 +169,7 @@ impl NguyenDonnelly<f64> {
     ) -> Result<Self, LutError> {
         let (m, n) = Self::bakers(&source);
         Ok(NguyenDonnelly {
-            uniforms: NguyenDonnellyUniforms {
-                min_cos2_theta_d: MIN_COS2_THETA_D,
-            },
+            uniforms: nguyen_donnelly_uniforms(),
             m: SharedTable::new(bake(&m, &m_sizes)?)?,
             n: SharedTable::new(bake(&n, &n_sizes)?)?,
             source,
@@ -277,6 +288,28 @@ impl FromInputs for NguyenDonnelly<f64> {
 
     fn from_inputs(values: &InputValues) -> Result<Self, ParamError> {
         Ok(Self::new(Marschner2003::from_inputs(values)?))
+    }
+}
+
+/// Why the inputs of the table-based models are baked: they are tabulated.
+const IN_THE_TEXTURES: &str = "it is baked into the lookup textures, which are tabulated in f64 \
+    when the model is built (a new value is a new texture)";
+
+impl VaryingInputs for NguyenDonnelly<f64> {
+    const NAME: &'static str = <Self as FromInputs>::NAME;
+    const INPUTS: &'static [Input] = <Self as FromInputs>::INPUTS;
+    const VARYING: &'static [&'static str] = &[];
+    const BAKED: &'static [(&'static str, &'static str)] = &[
+        ("alpha_r", IN_THE_TEXTURES),
+        ("beta_r", IN_THE_TEXTURES),
+        ("eta", IN_THE_TEXTURES),
+        ("sigma_a", IN_THE_TEXTURES),
+        ("no_caustic", IN_THE_TEXTURES),
+    ];
+
+    /// The one constant (no input enters the uniforms).
+    fn uniforms_in<R: Real>(_inputs: &InputsIn<R>) -> NguyenDonnellyUniforms<R> {
+        nguyen_donnelly_uniforms()
     }
 }
 

@@ -100,17 +100,22 @@
 //! **Fitted inputs** ([`Approximation::FITTED_INPUTS`]): the weights, exponents and tangent
 //! shifts (the two textures only rescale the secondary weight and offset both shifts, so they
 //! are not fitted).
+//!
+//! **Varying in shader code** ([`crate::bcsdf::VaryingInputs`]): every input, the two
+//! textures included (a renderer samples them per pixel); nothing is baked. Out of their
+//! domains weights and exponents are clamped as Kajiya-Kay's ([`super::KajiyaKay`]) and the
+//! texture values to [0, 1].
 
 use super::approximation::Approximation;
 use super::kajiya_kay::{
-    exponent_input, finite_input, lobe_window, positive_power, scale3, weight_for, weight_input,
-    ReferenceEnergies, EXPONENT_PRIMARY, EXPONENT_SECONDARY, KD, KS_PRIMARY, KS_SECONDARY,
-    MAX_EXPONENT,
+    exponent_in, exponent_input, finite_input, lobe_window, positive_power, scale3, weight_for,
+    weight_in, weight_input, ReferenceEnergies, EXPONENT_PRIMARY, EXPONENT_SECONDARY, KD,
+    KS_PRIMARY, KS_SECONDARY, MAX_EXPONENT,
 };
 use crate::absorption::Rgb;
 use crate::bcsdf::{
     longitudinal_variance, sum_lobes, Bcsdf, FromInputs, Input, InputKind, InputValue, InputValues,
-    Model, Query,
+    InputsIn, Model, Query, VaryingInputs,
 };
 use crate::error::ParamError;
 use crate::geometry::local_sin_cos_theta;
@@ -255,10 +260,14 @@ fn scheuermann_values(params: &ScheuermannParams) -> InputValues {
 }
 
 /// `(a, b)` of the tangent `normalize(u + s N) = a u + b N` (u and N orthogonal unit vectors),
-/// without overflow for large s.
-fn shifted_tangent(s: f64) -> (f64, f64) {
-    let length = 1.0_f64.hypot(s);
-    (1.0 / length, s / length)
+/// without overflow for large s: `(1, s) / sqrt(1 + s^2)`, computed as `(1/m, s/m)` divided
+/// by its length, `m = max(1, |s|)`.
+fn shifted_tangent<R: Real>(s: R) -> (R, R) {
+    let one = R::c(1.0);
+    let m = s.abs().max(one);
+    let (a, b) = (one / m, s / m);
+    let inv_length = one / (a * a + b * b).sqrt();
+    (a * inv_length, b * inv_length)
 }
 
 /// `smoothstep(-1, 0, x) = t^2 (3 - 2 t)`, `t = clamp(x + 1, 0, 1)`.
@@ -401,25 +410,58 @@ impl FromInputs for Scheuermann<f64> {
 
     fn from_inputs(values: &InputValues) -> Result<Self, ParamError> {
         let allowed = "the tangent shift must be finite";
-        let shift_primary = finite_input(values, "tangent_shift_primary", allowed)?;
-        let shift_secondary = finite_input(values, "tangent_shift_secondary", allowed)?;
-        let base_shift = texture_input(values, "shift_texture")? - 0.5;
-        let (tangent_primary, normal_primary) = shifted_tangent(shift_primary + base_shift);
-        let (tangent_secondary, normal_secondary) = shifted_tangent(shift_secondary + base_shift);
+        finite_input(values, "tangent_shift_primary", allowed)?;
+        finite_input(values, "tangent_shift_secondary", allowed)?;
+        texture_input(values, "shift_texture")?;
+        for name in ["kd", "ks_primary", "ks_secondary"] {
+            weight_input(values, name)?;
+        }
+        exponent_input(values, "exponent_primary")?;
+        exponent_input(values, "exponent_secondary")?;
+        texture_input(values, "noise_mask")?;
         Ok(Scheuermann {
-            uniforms: ScheuermannUniforms {
-                kd: weight_input(values, "kd")?,
-                ks_primary: weight_input(values, "ks_primary")?,
-                half_exponent_primary: 0.5 * exponent_input(values, "exponent_primary")?,
-                tangent_primary,
-                normal_primary,
-                ks_secondary: weight_input(values, "ks_secondary")?,
-                half_exponent_secondary: 0.5 * exponent_input(values, "exponent_secondary")?,
-                tangent_secondary,
-                normal_secondary,
-                noise_mask: texture_input(values, "noise_mask")?,
-            },
+            uniforms: Self::uniforms_in(&InputsIn::constant(values)),
         })
+    }
+}
+
+impl VaryingInputs for Scheuermann<f64> {
+    const NAME: &'static str = <Self as FromInputs>::NAME;
+    const INPUTS: &'static [Input] = <Self as FromInputs>::INPUTS;
+    const VARYING: &'static [&'static str] = &[
+        "kd",
+        "ks_primary",
+        "exponent_primary",
+        "tangent_shift_primary",
+        "ks_secondary",
+        "exponent_secondary",
+        "tangent_shift_secondary",
+        "shift_texture",
+        "noise_mask",
+    ];
+    const BAKED: &'static [(&'static str, &'static str)] = &[];
+
+    /// Half of each exponent, the shifted tangents `normalize(u + (shift + texture - 1/2) N)`
+    /// ([`ScheuermannUniforms`]) and the weights and mask themselves.
+    fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> ScheuermannUniforms<R> {
+        let texture = |name| inputs.number(name).clamp(R::c(0.0), R::c(1.0));
+        let base_shift = texture("shift_texture") - R::c(0.5);
+        let tangent = |name| shifted_tangent(inputs.number(name) + base_shift);
+        let (tangent_primary, normal_primary) = tangent("tangent_shift_primary");
+        let (tangent_secondary, normal_secondary) = tangent("tangent_shift_secondary");
+        let half = R::c(0.5);
+        ScheuermannUniforms {
+            kd: weight_in(inputs, "kd"),
+            ks_primary: weight_in(inputs, "ks_primary"),
+            half_exponent_primary: half * exponent_in(inputs, "exponent_primary"),
+            tangent_primary,
+            normal_primary,
+            ks_secondary: weight_in(inputs, "ks_secondary"),
+            half_exponent_secondary: half * exponent_in(inputs, "exponent_secondary"),
+            tangent_secondary,
+            normal_secondary,
+            noise_mask: texture("noise_mask"),
+        }
     }
 }
 

@@ -100,6 +100,14 @@
 //!   peak where Chiang's lobes peak for alpha = `Shift` = 2.0 degrees (theta_h shifted by
 //!   `-alpha/2` and `-2 alpha`), R at twice Chiang's shift for that alpha (the third slip
 //!   above).
+//!
+//! # Varying in shader code
+//!
+//! ([`crate::bcsdf::VaryingInputs`]) Every input: `roughness`, the absorption (`sigma_a`,
+//! `color` or `eumelanin` and `pheomelanin`, the form it is given in; the shader inverts a
+//! colour and takes the logarithm of BaseColor as [`KarisHair::new`] does) and, for
+//! `karis-refit`, `beta_n`; nothing is baked. Out of its domain the Roughness is clamped to
+//! [1/255, 1] (UE's own lower clamp) and beta_n as Chiang's ([`crate::bcsdf::MIN_ROUGHNESS`]).
 
 use core::marker::PhantomData;
 
@@ -108,16 +116,17 @@ use super::karis::{
     d_karis_of_cos, h_tt_karis_of_cos, inverse_eta_prime_karis, EtaPrimeCoefficients,
     ExpCosCoefficients, HTtCoefficients,
 };
+use crate::absorption::log_color_of_sigma_a;
 use crate::absorption::Absorption;
 use crate::bcsdf::{
-    longitudinal_variance, AbsorptionInput, Bcsdf, FromInputs, Input, InputKind, InputValue,
-    InputValues, Model, Query, COLOR_BETA_N, HAIR_INPUTS,
+    roughness_in, variance_of, AbsorptionInput, Bcsdf, FromInputs, Input, InputKind, InputValue,
+    InputValues, InputsIn, Model, Query, VaryingInputs, COLOR_BETA_N, HAIR_INPUTS,
 };
 use crate::error::ParamError;
 use crate::fresnel::fresnel_schlick;
 use crate::lobe::gaussian_lobe;
 use crate::params::{AzimuthalRoughness, HairParams, LongitudinalRoughness};
-use crate::real::{safe_asin, safe_sqrt, Real};
+use crate::real::{horner, safe_asin, safe_sqrt, Real};
 
 /// The lobes of the Unreal models, in the order of [`Bcsdf::eval_lobes`].
 pub const KARIS_LOBES: [&str; 3] = ["R", "TT", "TRT"];
@@ -195,14 +204,41 @@ impl KarisVariant for Refitted {
     const CONSTANTS: KarisConstants = KarisConstants::REFIT;
 }
 
+/// The series of `(x coth x - 1) / x^2 = 1/3 - x^2/45 + 2 x^4/945 - ...` in `x^2`: its
+/// coefficients `2^(2k+2) B_(2k+2) / (2k+2)!` (B the Bernoulli numbers), k = 0 to 9; the
+/// next term is below 7e-17 of the sum for x <= 1/2.
+const COTH_SERIES: [f64; 10] = [
+    1.0 / 3.0,
+    -1.0 / 45.0,
+    2.0 / 945.0,
+    -1.0 / 4725.0,
+    2.0 / 93555.0,
+    -1382.0 / 638_512_875.0,
+    4.0 / 18_243_225.0,
+    -3617.0 / 162_820_783_125.0,
+    87734.0 / 38_979_295_480_125.0,
+    -349_222.0 / 1_531_329_465_290_625.0,
+];
+
 /// The standard deviation in `sin theta_i` of Chiang's R lobe at normal incidence (theta_o =
 /// 0), `sqrt(v coth(1/v) - v^2)` with `v` from beta_m by Chiang's eq. 7: the second moment of
 /// a von Mises-Fisher distribution of concentration `1/v` along an axis perpendicular to its
 /// mean (the module documentation derives it). The width a Gaussian in the sum of sines
 /// needs to match Chiang's lobe there; below 1/sqrt(3) for every beta_m.
-pub(crate) fn chiang_r_width_in_sines(beta_m: LongitudinalRoughness) -> f64 {
-    let v = longitudinal_variance(beta_m.get());
-    (v / (1.0 / v).tanh() - v * v).max(0.0).sqrt()
+///
+/// With `x = 1/v`, `v coth(1/v) - v^2 = (x coth x - 1) / x^2`: for `x >= 1/2` as
+/// `v ((1 + e) / (1 - e) - v)`, `e = exp(-2x)` (which loses at most a factor 13 to
+/// cancellation, at x = 1/2), below by its series ([`COTH_SERIES`]), where the difference
+/// cancels (it tends to 1/3 as v grows while both terms grow like v^2).
+pub(crate) fn chiang_r_width_in_sines<R: Real>(beta_m: R) -> R {
+    let one = R::c(1.0);
+    let v = variance_of(beta_m);
+    let x = one / v;
+    let e = (R::c(-2.0) * x).exp();
+    let direct = v * ((one + e) / (one - e.min(R::c(0.5))) - v);
+    let small = x.min(R::c(0.5));
+    let series = horner(small * small, &COTH_SERIES);
+    safe_sqrt(R::select(x.lt(R::c(0.5)), series, direct))
 }
 
 /// Karis 2016's azimuthal R factor `N_R = D_R A_R` as `HairShading` evaluates it:
@@ -240,13 +276,25 @@ impl UnrealRoughness {
     /// clamped to [1/255, 1] (the module documentation derives it; the value never exceeds
     /// 0.76).
     pub fn from_beta_m(beta_m: LongitudinalRoughness) -> Self {
-        let width = chiang_r_width_in_sines(beta_m);
+        let width = chiang_r_width_in_sines(beta_m.get());
         UnrealRoughness(width.sqrt().clamp(MIN_ROUGHNESS, 1.0))
     }
+}
 
-    /// The R lobe's standard deviation in the sum of sines, `B_R = clamp(r, 1/255, 1)^2`.
-    fn width(self) -> f64 {
-        self.0.max(MIN_ROUGHNESS).powi(2)
+/// The Unreal models' uniforms in precision `R` from the absorption `sigma_a` per radius (UE's
+/// BaseColor its colour at `color_beta_n`) and the Roughness `roughness`: `B_R = clamp(r,
+/// 1/255, 1)^2` (UE's `Hair_g` widths `B_R`, `B_R / 2`, `2 B_R`), sigma_a clamped at 1e30 and
+/// `ln BaseColor = -sqrt(sigma_a) D(beta_n)` ([`log_color_of_sigma_a`]). The one derivation of
+/// [`KarisHair::new`] and of shader code with varying inputs.
+fn karis_uniforms<R: Real>(sigma_a: [R; 3], color_beta_n: R, roughness: R) -> KarisUniforms<R> {
+    let sigma_a = sigma_a.map(|s| s.min(R::c(MAX_SIGMA_A)));
+    let width = roughness.clamp(R::c(MIN_ROUGHNESS), R::c(1.0)).sqr();
+    KarisUniforms {
+        width_r: width,
+        width_tt: R::c(0.5) * width,
+        width_trt: R::c(2.0) * width,
+        sigma_a,
+        log_color: sigma_a.map(|s| log_color_of_sigma_a(s, color_beta_n)),
     }
 }
 
@@ -292,17 +340,8 @@ impl<V: KarisVariant> KarisHair<f64, V> {
         color_beta_n: AzimuthalRoughness,
         roughness: UnrealRoughness,
     ) -> Self {
-        let sigma_a = Absorption::new(sigma_a.rgb().map(|s| s.min(MAX_SIGMA_A)))
-            .expect("a clamped absorption is valid");
-        let width = roughness.width();
         KarisHair {
-            uniforms: KarisUniforms {
-                width_r: width,
-                width_tt: 0.5 * width,
-                width_trt: 2.0 * width,
-                sigma_a: sigma_a.rgb(),
-                log_color: sigma_a.log_color(color_beta_n),
-            },
+            uniforms: karis_uniforms(sigma_a.rgb(), color_beta_n.get(), roughness.get()),
             variant: PhantomData,
         }
     }
@@ -513,6 +552,52 @@ impl FromInputs for KarisRefit<f64> {
     fn from_inputs(values: &InputValues) -> Result<Self, ParamError> {
         let beta_n = AzimuthalRoughness::new(values.number("beta_n")?)?;
         Self::from_values(values, beta_n)
+    }
+}
+
+/// The Unreal models' uniforms from their inputs in precision `R`, a colour inverted at
+/// `color_beta_n` ([`karis_uniforms`]; a negative sigma_a or concentration is 0, a colour is
+/// clamped into (0, 1]).
+fn karis_uniforms_in<R: Real>(inputs: &InputsIn<R>, color_beta_n: R) -> KarisUniforms<R> {
+    let sigma_a = inputs.absorption("sigma_a").sigma_a(color_beta_n);
+    karis_uniforms(sigma_a, color_beta_n, inputs.number("roughness"))
+}
+
+/// The absorption in each of its forms.
+const ABSORPTION_VARYING: [&str; 4] = ["sigma_a", "color", "eumelanin", "pheomelanin"];
+
+impl VaryingInputs for Karis<f64> {
+    const NAME: &'static str = <Self as FromInputs>::NAME;
+    const INPUTS: &'static [Input] = &KARIS_INPUTS;
+    const VARYING: &'static [&'static str] = &[
+        "roughness",
+        ABSORPTION_VARYING[0],
+        ABSORPTION_VARYING[1],
+        ABSORPTION_VARYING[2],
+        ABSORPTION_VARYING[3],
+    ];
+    const BAKED: &'static [(&'static str, &'static str)] = &[];
+
+    fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> KarisUniforms<R> {
+        karis_uniforms_in(inputs, R::c(COLOR_BETA_N))
+    }
+}
+
+impl VaryingInputs for KarisRefit<f64> {
+    const NAME: &'static str = <Self as FromInputs>::NAME;
+    const INPUTS: &'static [Input] = &KARIS_REFIT_INPUTS;
+    const VARYING: &'static [&'static str] = &[
+        "roughness",
+        "beta_n",
+        ABSORPTION_VARYING[0],
+        ABSORPTION_VARYING[1],
+        ABSORPTION_VARYING[2],
+        ABSORPTION_VARYING[3],
+    ];
+    const BAKED: &'static [(&'static str, &'static str)] = &[];
+
+    fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> KarisUniforms<R> {
+        karis_uniforms_in(inputs, roughness_in(inputs.number("beta_n")))
     }
 }
 

@@ -283,6 +283,29 @@ pub fn wrap_angle<R: Real>(x: R) -> R {
     x - two_pi * ((x + pi::<R>()) * R::c(0.5 * core::f64::consts::FRAC_1_PI)).floor()
 }
 
+/// `x^n` for a constant `n >= 1` by binary exponentiation: the product of the squares
+/// `x^(2^k)` of the set bits of `n`, lowest first, which is the order of LLVM's expansion of
+/// `powi` and of compiler-rt's `__powidf2`, so that in `f64` it is `f64::powi` bit for bit
+/// (derivations written with `powi` keep their values when made generic).
+///
+/// # Panics
+/// If `n` is 0 (every caller raises to a positive constant power).
+#[inline(always)]
+pub(crate) fn powi<R: Real>(x: R, n: u32) -> R {
+    assert!(n > 0, "powi needs a positive exponent");
+    let (mut result, mut square, mut bits) = (None, x, n);
+    while bits > 0 {
+        if bits & 1 == 1 {
+            result = Some(result.map_or(square, |r: R| r * square));
+        }
+        bits >>= 1;
+        if bits > 0 {
+            square = square * square;
+        }
+    }
+    result.unwrap_or_else(|| unreachable!("n > 0 has a set bit"))
+}
+
 /// Evaluates the polynomial `c[0] + c[1] x + c[2] x^2 + ...` by Horner's rule.
 #[inline(always)]
 pub fn horner<R: Real>(x: R, coefficients: &[f64]) -> R {
@@ -308,6 +331,19 @@ mod tests {
                 "{x} -> {w}"
             );
             assert!((w.sin() - x.sin()).abs() < 1e-12 && (w.cos() - x.cos()).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn powi_is_f64_powi_bit_for_bit() {
+        let mut x = 0.123_456_789_f64;
+        for _ in 0..200 {
+            x = (x * 3.7 + 0.31).fract() * 1.7;
+            for n in [1, 2, 3, 4, 5, 20, 22] {
+                assert_eq!(powi(x, n).to_bits(), x.powi(n as i32).to_bits(), "{x}^{n}");
+                let y = x as f32;
+                assert_eq!(powi(y, n).to_bits(), y.powi(n as i32).to_bits(), "{y}^{n}");
+            }
         }
     }
 

@@ -619,6 +619,8 @@ mod structure;
 mod tables;
 /// The Unreal models (`hairmath::models::{Karis, KarisRefit}`).
 mod unreal;
+/// Shader code with varying inputs and the generic derivations of the uniforms.
+mod varying;
 
 traced_tests! {
     real_pi ["pi"] {
@@ -1206,6 +1208,7 @@ fn coverage_matches_the_source() {
         classic::COVERED,
         unreal::COVERED,
         frostbite::COVERED,
+        varying::COVERED,
     ]
     .concat();
     let covered: BTreeSet<String> = all.iter().map(|s| s.to_string()).collect();
