@@ -29,7 +29,12 @@ fn rows(stride: usize) -> Vec<f32> {
         .enumerate()
         .flat_map(|(k, (wi, wo))| {
             let mut row = vec![
-                wi.x as f32, wi.y as f32, wi.z as f32, wo.x as f32, wo.y as f32, wo.z as f32,
+                wi.x as f32,
+                wi.y as f32,
+                wi.z as f32,
+                wo.x as f32,
+                wo.y as f32,
+                wo.z as f32,
             ];
             row.resize(stride, ((k as f64 * 0.618_034).fract() * 2.0 - 1.0) as f32);
             row
@@ -56,7 +61,14 @@ fn device_cost(c: &mut Criterion) {
         group.bench_function(shader.model, |b| {
             b.iter_custom(|iters| {
                 let per_eval = device
-                    .time_per_eval(&wgsl, "hair_main", &queries, stride, &textures, iters as usize)
+                    .time_per_eval(
+                        &wgsl,
+                        "hair_main",
+                        &queries,
+                        stride,
+                        &textures,
+                        iters as usize,
+                    )
                     .expect("the dispatch runs");
                 Duration::from_secs_f64(per_eval * ROWS as f64 * iters as f64)
             })

@@ -321,7 +321,9 @@ mod tests {
         }
         // A zero tangent (rejected by FibreFrame::new) still gives finite numbers.
         let zero = fibre_frame(V3::new(0.0_f64, 0.0, -0.0));
-        assert!(zero.iter().all(|v| v.x.is_finite() && v.y.is_finite() && v.z.is_finite()));
+        assert!(zero
+            .iter()
+            .all(|v| v.x.is_finite() && v.y.is_finite() && v.z.is_finite()));
     }
 
     #[test]

@@ -312,7 +312,7 @@ fn readme_header() -> String {
          call inlined and loop unrolled (`hairmath::diagnostics::OpCounts`): add/mul (also \
          negation), div, sqrt, transcendental (exp, log, sin, cos, atan2), select (min, max, \
          abs, floor, comparisons, selects) and texture fetches.\n\n\
-         | model | WGSL lines | functions | add/mul | div | sqrt | transcendental | select | fetches |\n\
+         | model | WGSL lines | shader functions | add/mul | div | sqrt | transcendental | select | fetches |\n\
          | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n"
     )
 }
@@ -325,7 +325,7 @@ fn readme_row(out: &mut String, shader: &ModelShader, wgsl: &[u8]) {
         out,
         "| `{}` | {lines} | {} | {} | {} | {} | {} | {} | {} |",
         shader.model,
-        shader.module.functions().len(),
+        shader.module.module().functions.len(),
         c.add_mul,
         c.div,
         c.sqrt,

@@ -20,7 +20,11 @@ fn unit(v: [f64; 3]) -> [f32; 3] {
 
 /// The local direction of inclination `theta` (from the normal plane) and azimuth `phi`.
 fn direction(theta: f64, phi: f64) -> [f32; 3] {
-    unit([theta.sin(), theta.cos() * phi.cos(), theta.cos() * phi.sin()])
+    unit([
+        theta.sin(),
+        theta.cos() * phi.cos(),
+        theta.cos() * phi.sin(),
+    ])
 }
 
 /// The hard pairs of DESIGN.md: along the tangent, grazing, wi = wo, wi = -wo, phi = 0 and
@@ -32,7 +36,10 @@ fn hard_pairs() -> Vec<([f32; 3], [f32; 3])> {
         ([1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]),
         ([-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
         (direction(grazing, 0.3), direction(-grazing, 0.3)),
-        (direction(grazing, 0.0), direction(grazing, std::f64::consts::PI)),
+        (
+            direction(grazing, 0.0),
+            direction(grazing, std::f64::consts::PI),
+        ),
     ];
     for &(ti, to) in &[(0.0, 0.0), (0.4, -0.2), (-1.2, 1.1), (1.5, -1.5)] {
         for &phi in &[0.0, std::f64::consts::PI, -std::f64::consts::PI, 1e-6, 2.0] {
@@ -89,7 +96,13 @@ fn compare_on_device(shader: &ModelShader, queries: &[f32]) -> Result<Measured, 
     let compute = shader.compute().map_err(|e| e.to_string())?;
     let stride = compute.stride().expect("the compute form has a stride");
     let wgsl = compute.wgsl().map_err(|e| e.to_string())?;
-    let gpu = device.run(&wgsl, "hair_main", queries, stride, &textures_of(&shader.module))?;
+    let gpu = device.run(
+        &wgsl,
+        "hair_main",
+        queries,
+        stride,
+        &textures_of(&shader.module),
+    )?;
     let rules = AccuracyRules::wgsl_on_llvmpipe();
     let mut measured = Measured {
         rows: queries.len() / stride,
@@ -177,7 +190,10 @@ fn local_of_x_frame(w: &[f32]) -> [f32; 3] {
 fn the_world_space_function_is_the_local_one_in_the_fibre_frame() {
     let Some(device) = device() else { return };
     let shaders = example_shaders().expect("every model with a shader form emits");
-    for shader in shaders.iter().filter(|s| ["karis", "chiang"].contains(&s.model)) {
+    for shader in shaders
+        .iter()
+        .filter(|s| ["karis", "chiang"].contains(&s.model))
+    {
         let stride = shader.module.argument_scalars();
         let local_rows = rows(stride);
         // The world rows: tangent +X, then the directions whose local form is the local row's.
@@ -197,8 +213,12 @@ fn the_world_space_function_is_the_local_one_in_the_fibre_frame() {
             .unwrap();
         let local = shader.compute().and_then(|m| m.wgsl()).unwrap();
         let t = textures_of(&shader.module);
-        let a = device.run(&world, "hair_main", &world_rows, stride + 3, &t).unwrap();
-        let b = device.run(&local, "hair_main", &local_rows, stride, &t).unwrap();
+        let a = device
+            .run(&world, "hair_main", &world_rows, stride + 3, &t)
+            .unwrap();
+        let b = device
+            .run(&local, "hair_main", &local_rows, stride, &t)
+            .unwrap();
         assert_eq!(a.len(), b.len());
         // Both are within the bound of the CPU value of the same local directions (the frame
         // of +X rotates them exactly, up to the sign of zeros).

@@ -1,0 +1,181 @@
+#version 450 core
+#extension GL_ARB_compute_shader : require
+#extension GL_ARB_shader_storage_buffer_object : require
+layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+
+struct ChiangUniforms {
+    float variance_r;
+    float variance_tt;
+    float variance_trt;
+    float inv_variance_r;
+    float inv_variance_tt;
+    float inv_variance_trt;
+    float lobe_norm_r;
+    float lobe_norm_tt;
+    float lobe_norm_trt;
+    float logistic_scale;
+    float logistic_inv_scale;
+    float logistic_mass;
+    float logistic_norm;
+    float sin_alpha;
+    float cos_alpha;
+    float sin_2_alpha;
+    float cos_2_alpha;
+    float sin_4_alpha;
+    float cos_4_alpha;
+    float eta;
+    float inv_eta;
+    vec3 sigma_a;
+};
+const ChiangUniforms uniforms = ChiangUniforms(0.08461118, 0.021152794, 0.3384447, 11.818769, 47.275078, 2.9546924, 11.818769, 47.275078, 2.9627328, 0.117159806, 8.535351, 1.0, 8.535351, 0.034899496, 0.99939084, 0.06975647, 0.9975641, 0.1391731, 0.99026805, 1.55, 0.6451613, vec3(0.5447, 0.9061, 1.781));
+
+layout(std430, binding = 0) readonly buffer type_8_block_0Compute { float _group_0_binding_0_cs[]; };
+
+layout(std430, binding = 1) buffer type_8_block_1Compute { float _group_0_binding_1_cs[]; };
+
+
+// hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
+float[5] fibre_angles(vec3 wi_in, vec3 wo_in) {
+    float _e38 = (((1.0 * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0.0 * ((wi_in.z * 0.0) - (0.0 * wo_in.z)))) + (0.0 * ((0.0 * wo_in.y) - (wi_in.y * 0.0))));
+    float _e43 = (((0.0 * 0.0) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
+    return float[5](min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
+}
+
+// hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
+float fresnel(float cos_i, float eta, float inv_eta) {
+    float _e11 = sqrt(max((1.0 - ((1.0 - (cos_i * cos_i)) * (inv_eta * inv_eta))), 0.0));
+    float _e12 = (eta * cos_i);
+    float _e13 = (_e12 - _e11);
+    float _e14 = (_e12 + _e11);
+    float _e15 = (eta * _e11);
+    float _e16 = (cos_i - _e15);
+    float _e17 = (cos_i + _e15);
+    float _e18 = (_e14 * _e14);
+    float _e19 = (_e17 * _e17);
+    return min(((((_e13 * _e13) * _e19) + ((_e16 * _e16) * _e18)) / ((2.0 * _e18) * _e19)), 1.0);
+}
+
+// hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
+float[4] fibre_path(float h_in, float c0_, float inv_eta_1, float c2_, float eta_1) {
+    float _e8 = min(max(h_in, -(1.0)), 1.0);
+    float _e11 = (((_e8 * c0_) * inv_eta_1) * c2_);
+    float _e16 = sqrt(max((1.0 - (_e11 * _e11)), 0.0));
+    float _e20 = sqrt(max((1.0 - (_e8 * _e8)), 0.0));
+    float _e22 = fresnel((c0_ * _e20), eta_1, inv_eta_1);
+    return float[4](atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * c2_), _e22);
+}
+
+// hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
+float[4] attenuations(float fresnel_in, float transmittance) {
+    float _e3 = (1.0 - fresnel_in);
+    float _e5 = ((_e3 * _e3) * transmittance);
+    float _e7 = ((_e5 * fresnel_in) * transmittance);
+    return float[4](fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1.0 - (fresnel_in * transmittance)), 1e-30)));
+}
+
+// hairmath::azimuthal::exit_angle::exit_angle -- Marschner et al. 2003, eq. 3
+float exit_angle(float p, float gamma_i, float gamma_t) {
+    return ((((2.0 * p) * gamma_t) - (2.0 * gamma_i)) + (p * 3.1415927));
+}
+
+// hairmath::bcsdf::chiang::trimmed_logistics -- Chiang et al. 2016, eq. 13
+float[3] trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, float logistic_inv_scale, float logistic_norm) {
+    float _e8 = exp((-(abs(dphi_r)) * logistic_inv_scale));
+    float _e10 = (1.0 + _e8);
+    float _e11 = (_e10 * _e10);
+    float _e15 = exp((-(abs(dphi_tt)) * logistic_inv_scale));
+    float _e16 = (1.0 + _e15);
+    float _e17 = (_e16 * _e16);
+    float _e21 = exp((-(abs(dphi_trt)) * logistic_inv_scale));
+    float _e22 = (1.0 + _e21);
+    float _e23 = (_e22 * _e22);
+    float _e27 = (logistic_norm / (((1.0 * _e11) * _e17) * _e23));
+    float _e31 = (_e27 * _e11);
+    return float[3]((_e8 * ((_e27 * _e17) * _e23)), (_e15 * (_e31 * _e23)), (_e21 * (_e31 * _e17)));
+}
+
+// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
+float deon_lobe(float sin_i, float cos_i_1, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
+    float _e7 = (cos_i_1 * cos_o);
+    float _e9 = (_e7 - (sin_i * sin_o));
+    float _e12 = ((sin_i * cos_o) + (cos_i_1 * sin_o));
+    float _e22 = max((_e7 * inv_variance_r), 0.0);
+    float _e27 = (min(_e22, 3.75) * 0.26666668);
+    float _e28 = (_e27 * _e27);
+    float _e47 = (1.0 / max(_e22, 3.75));
+    float _e48 = (3.75 * _e47);
+    bool _e76 = (_e22 < 3.75);
+    return ((lobe_norm_r * (_e76 ? ((((((((((((0.0045813 * _e28) + 0.0360768) * _e28) + 0.2659732) * _e28) + 1.2067492) * _e28) + 3.0899425) * _e28) + 3.5156229) * _e28) + 1.0) : (((((((((((((((((0.00392377 * _e48) + -0.01647633) * _e48) + 0.02635537) * _e48) + -0.02057706) * _e48) + 0.00916281) * _e48) + -0.00157565) * _e48) + 0.00225319) * _e48) + 0.01328592) * _e48) + 0.3989423) * sqrt(_e47)))) * exp(((_e76 ? -(_e22) : 0.0) - (((0.0 < _e9) ? ((_e12 * _e12) / (1.0 + max(_e9, 0.0))) : (1.0 - _e9)) * inv_variance_r))));
+}
+
+// hair_bcsdf: the traced function, generated by hairmath::shader
+vec3 hair_bcsdf(vec3 wi, vec3 wo, float h) {
+    float _e50[5] = fibre_angles(wi, wo);
+    float _e56 = -(_e50[4]);
+    float _e57 = (_e50[2] * uniforms.inv_eta);
+    float _e65[4] = fibre_path(h, _e50[3], uniforms.inv_eta, (1.0 / sqrt(max((1.0 - (_e57 * _e57)), 0.0))), uniforms.eta);
+    float _e73[4] = attenuations(_e65[3], exp((-(uniforms.sigma_a.x) * _e65[2])));
+    float _e81[4] = attenuations(_e65[3], exp((-(uniforms.sigma_a.y) * _e65[2])));
+    float _e89[4] = attenuations(_e65[3], exp((-(uniforms.sigma_a.z) * _e65[2])));
+    float _e94 = exit_angle(0.0, _e65[0], _e65[1]);
+    float _e95 = (_e56 - _e94);
+    float _e104 = exit_angle(1.0, _e65[0], _e65[1]);
+    float _e105 = (_e56 - _e104);
+    float _e112 = exit_angle(2.0, _e65[0], _e65[1]);
+    float _e113 = (_e56 - _e112);
+    float _e119[3] = trimmed_logistics((_e95 - (6.2831855 * floor(((_e95 + 3.1415927) * 0.15915494)))), (_e105 - (6.2831855 * floor(((_e105 + 3.1415927) * 0.15915494)))), (_e113 - (6.2831855 * floor(((_e113 + 3.1415927) * 0.15915494)))), uniforms.logistic_inv_scale, uniforms.logistic_norm);
+    float _e135 = -(uniforms.sin_2_alpha);
+    float _e143 = deon_lobe(_e50[0], _e50[1], ((_e50[2] * uniforms.cos_2_alpha) + (_e50[3] * _e135)), abs(((_e50[3] * uniforms.cos_2_alpha) - (_e50[2] * _e135))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    float _e151 = deon_lobe(_e50[0], _e50[1], ((_e50[2] * uniforms.cos_alpha) + (_e50[3] * uniforms.sin_alpha)), abs(((_e50[3] * uniforms.cos_alpha) - (_e50[2] * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    float _e159 = deon_lobe(_e50[0], _e50[1], ((_e50[2] * uniforms.cos_4_alpha) + (_e50[3] * uniforms.sin_4_alpha)), abs(((_e50[3] * uniforms.cos_4_alpha) - (_e50[2] * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    float _e160 = deon_lobe(_e50[0], _e50[1], _e50[2], _e50[3], uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    return vec3(((((0.0 + (_e143 * (_e73[0] * _e119[0]))) + (_e151 * (_e73[1] * _e119[1]))) + (_e159 * (_e73[2] * _e119[2]))) + (_e160 * (_e73[3] * 0.15915494))), ((((0.0 + (_e143 * (_e81[0] * _e119[0]))) + (_e151 * (_e81[1] * _e119[1]))) + (_e159 * (_e81[2] * _e119[2]))) + (_e160 * (_e81[3] * 0.15915494))), ((((0.0 + (_e143 * (_e89[0] * _e119[0]))) + (_e151 * (_e89[1] * _e119[1]))) + (_e159 * (_e89[2] * _e119[2]))) + (_e160 * (_e89[3] * 0.15915494))));
+}
+
+// hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
+float[9] fibre_frame(vec3 tangent_in) {
+    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 1e-30));
+    float _e14 = (tangent_in.x * _e13);
+    float _e15 = (tangent_in.y * _e13);
+    float _e16 = (tangent_in.z * _e13);
+    float _e19 = -(1.0);
+    float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
+    float _e22 = (_e19 / (_e20 + _e16));
+    float _e24 = ((_e14 * _e15) * _e22);
+    return float[9](_e14, _e15, _e16, (1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+}
+
+// fibre_local_directions: the traced function, generated by hairmath::shader
+float[6] fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
+    float _e12[9] = fibre_frame(tangent);
+    return float[6]((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+}
+
+// hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
+vec3 hair_bcsdf_world(vec3 tangent, vec3 wi, vec3 wo, float h) {
+    float _e4[6] = fibre_local_directions(tangent, wi, wo);
+    vec3 _e13 = hair_bcsdf(vec3(_e4[0], _e4[1], _e4[2]), vec3(_e4[3], _e4[4], _e4[5]), h);
+    return _e13;
+}
+
+void main() {
+    uvec3 id = gl_GlobalInvocationID;
+    uint row = (id.x + ((id.y * 65535u) * 64u));
+    if ((row >= (uint(_group_0_binding_1_cs.length()) / 3u))) {
+        return;
+    }
+    uint first = (row * 7u);
+    float _e19 = _group_0_binding_0_cs[(first + 0u)];
+    float _e23 = _group_0_binding_0_cs[(first + 1u)];
+    float _e27 = _group_0_binding_0_cs[(first + 2u)];
+    float _e31 = _group_0_binding_0_cs[(first + 3u)];
+    float _e35 = _group_0_binding_0_cs[(first + 4u)];
+    float _e39 = _group_0_binding_0_cs[(first + 5u)];
+    float _e44 = _group_0_binding_0_cs[(first + 6u)];
+    vec3 _e45 = hair_bcsdf(vec3(_e19, _e23, _e27), vec3(_e31, _e35, _e39), _e44);
+    uint _e46 = (row * 3u);
+    _group_0_binding_1_cs[(_e46 + 0u)] = _e45.x;
+    _group_0_binding_1_cs[(_e46 + 1u)] = _e45.y;
+    _group_0_binding_1_cs[(_e46 + 2u)] = _e45.z;
+}
+

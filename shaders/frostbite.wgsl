@@ -1,0 +1,156 @@
+struct FrostbiteUniforms {
+    width_r: f32,
+    width_tt: f32,
+    width_trt: f32,
+    shift_r: f32,
+    shift_tt: f32,
+    shift_trt: f32,
+    eta: f32,
+    sigma_a: vec3<f32>,
+    beta_n: f32,
+    trt_scale: f32,
+}
+
+const uniforms: FrostbiteUniforms = FrostbiteUniforms(0.27830222f, 0.13915111f, 0.55660444f, 0.06979899f, -0.03490481f, -0.10467191f, 1.55f, vec3<f32>(0.5447f, 0.9061f, 1.781f), 0.3f, 1f);
+
+// lut0_frostbite_tt_texels: 9 x 10 texels (theta_o in [0, 1.3962634] along x, beta_n in [0.1, 1] along y); x, y = a, b; rgba32float, read with textureLoad
+@group(1) @binding(0) 
+var lut0_frostbite_tt_texels: texture_2d<f32>;
+
+// table 0 (frostbite_tt): 2 axes, 2 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into
+fn lut0_frostbite_tt(theta_o: f32, beta_n: f32) -> vec4<f32> {
+    let _e10 = (min(max(((theta_o - 0f) * 0.71619725f), 0f), 1f) * 8f);
+    let _e13 = min(floor(_e10), 7f);
+    let _e14 = (_e10 - _e13);
+    let _e15 = (1f - _e14);
+    let _e19 = clamp(i32(_e13), 0i, 7i);
+    let _e21 = (_e19 + 1i);
+    let _e29 = (min(max(((beta_n - 0.1f) * 1.1111112f), 0f), 1f) * 9f);
+    let _e31 = min(floor(_e29), 8f);
+    let _e32 = (_e29 - _e31);
+    let _e33 = (1f - _e32);
+    let _e36 = clamp(i32(_e31), 0i, 8i);
+    let _e37 = (_e36 + 1i);
+    let _e43 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e19, _e36), 0i);
+    let _e49 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e21, _e36), 0i);
+    let _e55 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e19, _e37), 0i);
+    let _e61 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e21, _e37), 0i);
+    return ((((vec4(0f) + (((1f * _e15) * _e33) * _e43)) + (((1f * _e14) * _e33) * _e49)) + (((1f * _e15) * _e32) * _e55)) + (((1f * _e14) * _e32) * _e61));
+}
+
+// hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
+fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> array<f32, 5> {
+    let _e38 = (((1f * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0f * ((wi_in.z * 0f) - (0f * wo_in.z)))) + (0f * ((0f * wo_in.y) - (wi_in.y * 0f))));
+    let _e43 = (((0f * 0f) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
+    return array<f32, 5>(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e38, select(1f, _e43, (0f < (abs(_e38) + abs(_e43))))));
+}
+
+// hairmath::lobe::gaussian::gaussian_lobe -- Marschner et al. 2003, eq. 6
+fn gaussian_lobe(beta: f32, x: f32) -> f32 {
+    let _e2 = (x / beta);
+    return (exp(((-0.5f * _e2) * _e2)) / (beta * 2.5066283f));
+}
+
+// hairmath::fresnel::fresnel_schlick -- Schlick 1994, eq. 24
+fn fresnel_schlick(cos_i: f32, eta: f32) -> f32 {
+    let _e5 = ((eta - 1f) / (eta + 1f));
+    let _e6 = (_e5 * _e5);
+    let _e10 = (1f - min(max(cos_i, 0f), 1f));
+    let _e11 = (_e10 * _e10);
+    return (_e6 + ((((1f - _e6) * _e11) * _e11) * _e10));
+}
+
+// hairmath::models::frostbite::tt_gaussian -- Tafuri 2019, slide 19
+fn tt_gaussian(phi: f32, a: f32, b: f32) -> f32 {
+    let _e6 = (abs(phi) - 3.1415927f);
+    return (a * exp((-(b) * (_e6 * _e6))));
+}
+
+// hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
+fn fresnel(cos_i_1: f32, eta_1: f32, inv_eta: f32) -> f32 {
+    let _e11 = sqrt(max((1f - ((1f - (cos_i_1 * cos_i_1)) * (inv_eta * inv_eta))), 0f));
+    let _e12 = (eta_1 * cos_i_1);
+    let _e13 = (_e12 - _e11);
+    let _e14 = (_e12 + _e11);
+    let _e15 = (eta_1 * _e11);
+    let _e16 = (cos_i_1 - _e15);
+    let _e17 = (cos_i_1 + _e15);
+    let _e18 = (_e14 * _e14);
+    let _e19 = (_e17 * _e17);
+    return min(((((_e13 * _e13) * _e19) + ((_e16 * _e16) * _e18)) / ((2f * _e18) * _e19)), 1f);
+}
+
+// hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
+fn fibre_path(h: f32, c0_: f32, c1_: f32, c2_: f32, eta_2: f32) -> array<f32, 4> {
+    let _e8 = min(max(h, -(1f)), 1f);
+    let _e11 = (((_e8 * c0_) * c1_) * c2_);
+    let _e16 = sqrt(max((1f - (_e11 * _e11)), 0f));
+    let _e20 = sqrt(max((1f - (_e8 * _e8)), 0f));
+    let _e22 = fresnel((c0_ * _e20), eta_2, c1_);
+    return array<f32, 4>(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * c2_), _e22);
+}
+
+// hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
+fn attenuations(fresnel_in: f32, transmittance: f32) -> array<f32, 4> {
+    let _e3 = (1f - fresnel_in);
+    let _e5 = ((_e3 * _e3) * transmittance);
+    let _e7 = ((_e5 * fresnel_in) * transmittance);
+    return array<f32, 4>(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1f - (fresnel_in * transmittance)), 0.000000000000000000000000000001f)));
+}
+
+// hair_bcsdf: the traced function, generated by hairmath::shader
+fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
+    let _e36 = fibre_angles(wi, wo);
+    let _e41 = (_e36[0] + _e36[2]);
+    let _e55 = gaussian_lobe(uniforms.width_r, (_e41 - uniforms.shift_r));
+    let _e64 = fresnel_schlick(sqrt(min(max((0.5f + (0.5f * (((wi.x * wo.x) + (wi.y * wo.y)) + (wi.z * wo.z)))), 0f), 1f)), uniforms.eta);
+    let _e66 = (_e55 * ((0.25f * max(cos((0.5f * _e36[4])), 0f)) * _e64));
+    let _e68 = gaussian_lobe(uniforms.width_tt, (_e41 - uniforms.shift_tt));
+    let _e69 = lut0_frostbite_tt(abs(atan2(_e36[2], _e36[3])), uniforms.beta_n);
+    let _e72 = tt_gaussian(_e36[4], _e69.x, _e69.y);
+    let _e73 = (_e68 * _e72);
+    let _e74 = (1f / uniforms.eta);
+    let _e75 = (_e36[2] * _e74);
+    let _e80 = (1f / sqrt(max((1f - (_e75 * _e75)), 0f)));
+    let _e81 = fibre_path(0f, _e36[3], _e74, _e80, uniforms.eta);
+    let _e84 = -(uniforms.sigma_a.x);
+    let _e87 = attenuations(_e81[3], exp((_e84 * _e81[2])));
+    let _e89 = -(uniforms.sigma_a.y);
+    let _e92 = attenuations(_e81[3], exp((_e89 * _e81[2])));
+    let _e94 = -(uniforms.sigma_a.z);
+    let _e97 = attenuations(_e81[3], exp((_e94 * _e81[2])));
+    let _e103 = gaussian_lobe(uniforms.width_trt, (_e41 - uniforms.shift_trt));
+    let _e111 = (_e103 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((17f * cos(_e36[4])) + -16.78f)))));
+    let _e113 = fibre_path(0.8660254f, _e36[3], _e74, _e80, uniforms.eta);
+    let _e118 = attenuations(_e113[3], exp((_e84 * _e113[2])));
+    let _e122 = attenuations(_e113[3], exp((_e89 * _e113[2])));
+    let _e126 = attenuations(_e113[3], exp((_e94 * _e113[2])));
+    return vec3<f32>(((_e66 + (_e73 * _e87[1])) + (_e111 * _e118[2])), ((_e66 + (_e73 * _e92[1])) + (_e111 * _e122[2])), ((_e66 + (_e73 * _e97[1])) + (_e111 * _e126[2])));
+}
+
+// hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
+fn fibre_frame(tangent_in: vec3<f32>) -> array<f32, 9> {
+    let _e13 = (1f / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 0.000000000000000000000000000001f));
+    let _e14 = (tangent_in.x * _e13);
+    let _e15 = (tangent_in.y * _e13);
+    let _e16 = (tangent_in.z * _e13);
+    let _e19 = -(1f);
+    let _e20 = select(1f, _e19, (_e16 < 0f));
+    let _e22 = (_e19 / (_e20 + _e16));
+    let _e24 = ((_e14 * _e15) * _e22);
+    return array<f32, 9>(_e14, _e15, _e16, (1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+}
+
+// fibre_local_directions: the traced function, generated by hairmath::shader
+fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> array<f32, 6> {
+    let _e12 = fibre_frame(tangent);
+    return array<f32, 6>((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+}
+
+// hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
+fn hair_bcsdf_world(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
+    let _e3 = fibre_local_directions(tangent, wi, wo);
+    let _e12 = hair_bcsdf(vec3<f32>(_e3[0], _e3[1], _e3[2]), vec3<f32>(_e3[3], _e3[4], _e3[5]));
+    return _e12;
+}
+
