@@ -117,8 +117,9 @@ impl<R: Real> OffsetNodes<R> {
     }
 }
 
-/// The names of `N_p A_p` per lobe and channel, the state of the far field's loop over nodes.
-const LOBE_CHANNELS: [&str; 12] = [
+/// The state of the far field's loop over nodes with the lobe-choice weights of sampling:
+/// `N_p A_p` per lobe and channel, then `w_p N_p` per lobe.
+const NODE_SUMS: [&str; 16] = [
     "r_red",
     "r_green",
     "r_blue",
@@ -131,6 +132,10 @@ const LOBE_CHANNELS: [&str; 12] = [
     "residual_red",
     "residual_green",
     "residual_blue",
+    "w_r",
+    "w_tt",
+    "w_trt",
+    "w_residual",
 ];
 
 /// The loop of the fixed-node far field over its nodes (h_k, P_k): `N_p A_p += P_k (N_p A_p)(h_k)`.
@@ -138,7 +143,7 @@ const NODES: ShaderLoop = ShaderLoop {
     name: "far_field_node",
     array: "FAR_FIELD_OFFSETS",
     fields: &["h", "weight"],
-    state: &LOBE_CHANNELS,
+    state: NODE_SUMS.split_at(12).0,
     source: "hairmath::bcsdf::far_field::OffsetNodes::azimuthal",
     equation: "Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature",
 };
@@ -146,24 +151,7 @@ const NODES: ShaderLoop = ShaderLoop {
 /// [`NODES`] also accumulating the lobe-choice weights `w_p N_p` of sampling.
 const NODES_WITH_PDF: ShaderLoop = ShaderLoop {
     name: "far_field_node_with_pdf",
-    state: &[
-        "r_red",
-        "r_green",
-        "r_blue",
-        "tt_red",
-        "tt_green",
-        "tt_blue",
-        "trt_red",
-        "trt_green",
-        "trt_blue",
-        "residual_red",
-        "residual_green",
-        "residual_blue",
-        "w_r",
-        "w_tt",
-        "w_trt",
-        "w_residual",
-    ],
+    state: &NODE_SUMS,
     ..NODES
 };
 

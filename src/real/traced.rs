@@ -753,6 +753,11 @@ impl Graph {
         self.signature.argument_count()
     }
 
+    /// The flat nodes ([`Graph::nodes`]) the traced function returns, in order.
+    pub fn outputs(&self) -> &[u32] {
+        &self.outputs
+    }
+
     /// Number of outputs of the traced function.
     pub fn output_count(&self) -> usize {
         self.outputs.len()
@@ -908,7 +913,10 @@ impl Graph {
         out[channel as usize]
     }
 
-    /// Prints the graph as WGSL: the declarations of the structs its arguments use, then
+    /// A flat debugging dump of the graph as one WGSL function (every call inlined, one `let`
+    /// per node), which the trace tests validate with naga. Shader code to ship comes from
+    /// `hairmath::shader` (feature `shader`): named functions, loops, baked uniforms, tables
+    /// read with `textureLoad`. This dump prints the declarations of the structs its arguments use, then
     /// `fn name(arguments) -> T`, with the arguments of the signature (`x0: f32, ...` for
     /// [`trace`]) and `T` `vec3<f32>` for [`ResultType::Vec3`], else `f32` for one output and
     /// `array<f32, N>` for several. Only nodes the outputs depend on are emitted, one `let` per
@@ -1125,12 +1133,21 @@ impl Graph {
 }
 
 fn operands(node: &Node) -> Vec<u32> {
-    let mut out = Vec::new();
-    map_operands(*node, |k| {
-        out.push(k);
-        k
-    });
-    out
+    node.operands()
+}
+
+impl Node {
+    /// The indices of the nodes this node reads, in operand order (a fetch's coordinates, the
+    /// other nodes' operands left to right; none for inputs, constants, globals and
+    /// [`Node::Result`], whose call site's arguments are the operands of the call).
+    pub fn operands(&self) -> Vec<u32> {
+        let mut out = Vec::new();
+        map_operands(*self, |k| {
+            out.push(k);
+            k
+        });
+        out
+    }
 }
 
 /// `node` with each operand `k` replaced by `f(k)`, called in operand order (a fetch's

@@ -272,6 +272,15 @@ impl ModuleBuilder {
         Ok(self)
     }
 
+    /// Replaces the comment written above the top-level function `function` (by default it
+    /// names the function as traced) with `lines`.
+    pub fn comment(mut self, function: &str, lines: Vec<String>) -> Self {
+        if let Some(entry) = self.shared.comments.iter_mut().find(|(n, _)| n == function) {
+            entry.1 = lines;
+        }
+        self
+    }
+
     /// Adds the function `name(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, rest...)`
     /// for world-space directions: it calls the top-level function `frame` (three `vec3<f32>`
     /// arguments, six scalar outputs: local wi, then local wo, such as

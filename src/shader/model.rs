@@ -54,6 +54,48 @@ pub enum Language {
     Spirv,
 }
 
+impl Language {
+    /// Every language with its command-line name and a line of help, in the order the
+    /// command line lists them.
+    pub const ALL: [(Language, &'static str, &'static str); 7] = [
+        (Language::Wgsl, "wgsl", "WGSL functions, no entry point"),
+        (
+            Language::WgslCompute,
+            "wgsl-compute",
+            "WGSL with the compute entry point hair_main over a storage buffer of rows",
+        ),
+        (
+            Language::WgslNagaOil,
+            "wgsl-naga-oil",
+            "WGSL with #define_import_path hairmath::<model>, for naga_oil (Bevy)",
+        ),
+        (Language::Glsl, "glsl", "Vulkan GLSL 4.50 compute shader"),
+        (
+            Language::Hlsl,
+            "hlsl",
+            "HLSL shader model 6.0 compute shader",
+        ),
+        (
+            Language::Msl,
+            "msl",
+            "Metal Shading Language 2.0 compute kernel",
+        ),
+        (
+            Language::Spirv,
+            "spirv",
+            "SPIR-V 1.0 compute shader (binary)",
+        ),
+    ];
+
+    /// The language of a command-line name of [`Language::ALL`].
+    pub fn from_name(name: &str) -> Option<Language> {
+        Self::ALL
+            .iter()
+            .find(|(_, n, _)| *n == name)
+            .map(|(l, _, _)| *l)
+    }
+}
+
 /// Why a model's shader cannot be made.
 #[derive(Debug, thiserror::Error)]
 pub enum ModelShaderError {
@@ -103,7 +145,21 @@ pub fn model_shader(
     let graph = (shader.trace)(values, varying)?;
     let module = super::ModuleBuilder::new()
         .add(&graph, BCSDF_FUNCTION)?
+        .comment(
+            BCSDF_FUNCTION,
+            vec![
+                format!("{BCSDF_FUNCTION}: `hairmath eval --model {}`, {}", entry.name, entry.summary),
+                "(hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)"
+                    .to_string(),
+            ],
+        )
         .add(&trace_local_directions(), FRAME_FUNCTION)?
+        .comment(
+            FRAME_FUNCTION,
+            vec![format!(
+                "{FRAME_FUNCTION}: hairmath::geometry::local_directions -- wi and wo in the fibre's frame"
+            )],
+        )
         .world_companion(WORLD_FUNCTION, FRAME_FUNCTION, BCSDF_FUNCTION)?
         .build()?;
     Ok(ModelShader {

@@ -44,7 +44,7 @@ use std::collections::HashMap;
 use std::f64::consts::PI;
 
 use hairmath::lut::Table;
-use hairmath::real::{Binary, Body, CallKind, ConstArray, Function, Graph, Node, Real, Unary};
+use hairmath::real::{Binary, Graph, Node, Real, Unary};
 
 use super::gpu::{ulp_f32, Tolerance};
 
@@ -263,10 +263,10 @@ mod cause {
 }
 
 impl<'g> BoundPlan<'g> {
-    /// The plan for `graph`: re-flattens its structured body to find the flat nodes of its
-    /// outputs (checked equal to [`Graph::nodes`]), marks the live nodes and measures the tables.
+    /// The plan for `graph`: the flat nodes of its outputs ([`Graph::outputs`]), the live nodes
+    /// and the tables' slopes.
     pub fn new(graph: &'g Graph) -> Self {
-        let outputs = flat_outputs(graph);
+        let outputs = graph.outputs().to_vec();
         let nodes = graph.nodes();
         let mut live = vec![false; nodes.len()];
         for &o in &outputs {
@@ -274,7 +274,7 @@ impl<'g> BoundPlan<'g> {
         }
         for i in (0..nodes.len()).rev() {
             if live[i] {
-                for k in operands(nodes[i]) {
+                for k in nodes[i].operands() {
                     live[k as usize] = true;
                 }
             }
@@ -530,7 +530,8 @@ impl<'g> BoundPlan<'g> {
         };
         let mut lines = Vec::new();
         let mut i = output;
-        while let Some(k) = operands(self.graph.nodes()[i as usize])
+        while let Some(k) = self.graph.nodes()[i as usize]
+            .operands()
             .into_iter()
             .max_by(|&a, &b| rel(a).total_cmp(&rel(b)))
         {
@@ -545,7 +546,8 @@ impl<'g> BoundPlan<'g> {
     /// A description of node `i` at one row: its kind, and each operand's CPU value and bound.
     fn describe(&self, trace: &NodeTrace, i: u32) -> String {
         let node = self.graph.nodes()[i as usize];
-        let operands: Vec<String> = operands(node)
+        let operands: Vec<String> = node
+            .operands()
             .iter()
             .map(|&k| {
                 let kind = format!("{:?}", self.graph.nodes()[k as usize]);
@@ -1181,167 +1183,6 @@ fn apply_binary(op: Binary, a: f32, b: f32) -> f32 {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The flat graph's outputs: the library keeps them private, so the structured body is flattened
-// again here exactly as the tracer does (calls inlined, loops unrolled, equal nodes once) and the
-// result checked equal to `Graph::nodes`.
-
-/// `node` with each operand `k` replaced by `f(k)`, in operand order (as the tracer's
-/// `map_operands`).
-fn map_operands(node: Node, mut f: impl FnMut(u32) -> u32) -> Node {
-    match node {
-        Node::Input(_) | Node::Const(_) | Node::Global(_) | Node::Result { .. } => node,
-        Node::Unary(op, a) => Node::Unary(op, f(a)),
-        Node::Not(a) => Node::Not(f(a)),
-        Node::Binary(op, a, b) => {
-            let a = f(a);
-            Node::Binary(op, a, f(b))
-        }
-        Node::Less(a, b) => {
-            let a = f(a);
-            Node::Less(a, f(b))
-        }
-        Node::LessEqual(a, b) => {
-            let a = f(a);
-            Node::LessEqual(a, f(b))
-        }
-        Node::And(a, b) => {
-            let a = f(a);
-            Node::And(a, f(b))
-        }
-        Node::Or(a, b) => {
-            let a = f(a);
-            Node::Or(a, f(b))
-        }
-        Node::Select(m, t, e) => {
-            let m = f(m);
-            let t = f(t);
-            Node::Select(m, t, f(e))
-        }
-        Node::Fetch {
-            table,
-            coords,
-            channel,
-        } => {
-            let dims = coords
-                .iter()
-                .position(|&c| c == hairmath::real::NO_COORDINATE)
-                .unwrap_or(coords.len());
-            let mut mapped = coords;
-            for c in &mut mapped[..dims] {
-                *c = f(*c);
-            }
-            Node::Fetch {
-                table,
-                coords: mapped,
-                channel,
-            }
-        }
-    }
-}
-
-/// The operands of `node`.
-fn operands(node: Node) -> Vec<u32> {
-    let mut out = Vec::new();
-    map_operands(node, |k| {
-        out.push(k);
-        k
-    });
-    out
-}
-
-/// A flat body under construction, equal nodes recorded once.
-#[derive(Default)]
-struct Flat {
-    nodes: Vec<Node>,
-    index: HashMap<Node, u32>,
-}
-
-impl Flat {
-    fn intern(&mut self, node: Node) -> u32 {
-        if let Some(&k) = self.index.get(&node) {
-            return k;
-        }
-        let k = self.nodes.len() as u32;
-        self.nodes.push(node);
-        self.index.insert(node, k);
-        k
-    }
-}
-
-/// `body` called with the flat nodes `args`, recorded in `flat`; its outputs' flat nodes.
-fn inline(
-    body: &Body,
-    args: &[u32],
-    functions: &[Function],
-    arrays: &[ConstArray],
-    flat: &mut Flat,
-) -> Vec<u32> {
-    let mut map: Vec<u32> = Vec::with_capacity(body.nodes.len());
-    let mut results: HashMap<u32, Vec<u32>> = HashMap::new();
-    for node in &body.nodes {
-        let id = match *node {
-            Node::Input(k) => args[k as usize],
-            Node::Result { site, output } => {
-                if let std::collections::hash_map::Entry::Vacant(slot) = results.entry(site) {
-                    let call = &body.calls[site as usize];
-                    let call_args: Vec<u32> = call.args.iter().map(|&a| map[a as usize]).collect();
-                    let function = &functions[call.function as usize];
-                    let outputs = match call.kind {
-                        CallKind::Call => {
-                            inline(&function.body, &call_args, functions, arrays, flat)
-                        }
-                        CallKind::Loop { array } => {
-                            let (init, captures) = call_args.split_at(function.body.outputs.len());
-                            let mut state = init.to_vec();
-                            for element in &arrays[array as usize].elements {
-                                let mut inputs = state.clone();
-                                inputs.extend(
-                                    element
-                                        .iter()
-                                        .map(|v| flat.intern(Node::Const(v.to_bits()))),
-                                );
-                                inputs.extend_from_slice(captures);
-                                state = inline(&function.body, &inputs, functions, arrays, flat);
-                            }
-                            state
-                        }
-                    };
-                    slot.insert(outputs);
-                }
-                results[&site][output as usize]
-            }
-            other => flat.intern(map_operands(other, |k| map[k as usize])),
-        };
-        map.push(id);
-    }
-    body.outputs.iter().map(|&o| map[o as usize]).collect()
-}
-
-/// The flat nodes of `graph`'s outputs.
-///
-/// # Panics
-/// If flattening the structured body does not reproduce [`Graph::nodes`].
-fn flat_outputs(graph: &Graph) -> Vec<u32> {
-    let mut flat = Flat::default();
-    let inputs: Vec<u32> = (0..graph.input_count() as u32)
-        .map(|k| flat.intern(Node::Input(k)))
-        .collect();
-    let outputs = inline(
-        graph.body(),
-        &inputs,
-        graph.functions(),
-        graph.arrays(),
-        &mut flat,
-    );
-    assert!(
-        flat.nodes == graph.nodes(),
-        "re-flattening the body does not reproduce Graph::nodes"
-    );
-    assert_eq!(outputs.len(), graph.output_count());
-    outputs
-}
-
-// ---------------------------------------------------------------------------------------------
 // Reference evaluations for the tests: the graph in f64 (a device with no error), and a simulated
 // device that spends each rule's allowance on every operation.
 
@@ -1380,7 +1221,7 @@ impl Stream {
 
 /// `graph`'s outputs at `inputs` on `device` under `rules` (as f64).
 fn device_eval(graph: &Graph, inputs: &[f32], device: Device, rules: &AccuracyRules) -> Vec<f64> {
-    let outputs = flat_outputs(graph);
+    let outputs = graph.outputs().to_vec();
     let value = device_nodes(graph, inputs, device, rules);
     outputs.iter().map(|&o| value[o as usize]).collect()
 }

@@ -122,7 +122,7 @@ fn compare_on_device(shader: &ModelShader, queries: &[f32]) -> Result<Measured, 
                 measured.infinite_bounds += 1;
                 continue;
             }
-            if !(difference <= bound[c]) {
+            if difference.is_nan() || difference > bound[c] {
                 failures.push(format!(
                     "row {k} {row:?} channel {c}: GPU {g:e}, CPU {e:e}, bound {:e}",
                     bound[c]
@@ -228,7 +228,7 @@ fn the_world_space_function_is_the_local_one_in_the_fibre_frame() {
             for c in 0..3 {
                 let d = (f64::from(a[3 * k + c]) - f64::from(b[3 * k + c])).abs();
                 assert!(
-                    !(d > 2.0 * bound[c]),
+                    !d.is_nan() && d <= 2.0 * bound[c],
                     "{} row {k} {row:?}: world {} local {} bound {}",
                     shader.model,
                     a[3 * k + c],

@@ -4,45 +4,20 @@
 
 use crate::flags::{model_names, ModelFlags};
 use crate::CliError;
-use clap::builder::PossibleValuesParser;
-use clap::{Args, ValueEnum};
+use clap::builder::{PossibleValue, PossibleValuesParser};
+use clap::Args;
 use hairmath::registry::find_model;
 use hairmath::shader::{committed_shaders, model_shader, table_files, CommittedFile, Language};
 use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
-/// The `--lang` values.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum LanguageArg {
-    /// WGSL functions, no entry point (import it, or paste it into a shader).
-    Wgsl,
-    /// WGSL with the compute entry point `hair_main` over a storage buffer of rows.
-    WgslCompute,
-    /// WGSL with `#define_import_path hairmath::<model>`, for naga_oil (Bevy).
-    WgslNagaOil,
-    /// Vulkan GLSL 4.50 compute shader (`glslangValidator -V -S comp` accepts it).
-    Glsl,
-    /// HLSL shader model 6.0 compute shader.
-    Hlsl,
-    /// Metal Shading Language 2.0 compute kernel.
-    Msl,
-    /// SPIR-V 1.0 compute shader (binary).
-    Spirv,
-}
-
-impl From<LanguageArg> for Language {
-    fn from(l: LanguageArg) -> Language {
-        match l {
-            LanguageArg::Wgsl => Language::Wgsl,
-            LanguageArg::WgslCompute => Language::WgslCompute,
-            LanguageArg::WgslNagaOil => Language::WgslNagaOil,
-            LanguageArg::Glsl => Language::Glsl,
-            LanguageArg::Hlsl => Language::Hlsl,
-            LanguageArg::Msl => Language::Msl,
-            LanguageArg::Spirv => Language::Spirv,
-        }
-    }
+/// The `--lang` values ([`Language::ALL`]).
+fn languages() -> Vec<PossibleValue> {
+    Language::ALL
+        .iter()
+        .map(|(_, name, help)| PossibleValue::new(*name).help(*help))
+        .collect()
 }
 
 /// Arguments of `hairmath shader`.
@@ -55,9 +30,9 @@ pub struct ShaderArgs {
     /// The models' inputs, as for `eval`; every input not named by --varying is baked.
     #[command(flatten)]
     flags: ModelFlags,
-    /// The language.
-    #[arg(long, value_enum, default_value = "wgsl")]
-    lang: LanguageArg,
+    /// The language: wgsl writes the functions only; the others add the compute entry point.
+    #[arg(long, default_value = "wgsl", value_parser = PossibleValuesParser::new(languages()))]
+    lang: String,
     /// Model inputs that become arguments of hair_bcsdf after wo (and h), in this order, for
     /// per-pixel values: for example `--varying color,roughness`.
     #[arg(long, value_delimiter = ',', value_name = "NAME,...")]
@@ -83,7 +58,8 @@ pub fn run(args: &ShaderArgs) -> Result<(), CliError> {
     let values = args.flags.values_for(entry)?;
     let varying: Vec<&str> = args.varying.iter().map(String::as_str).collect();
     let shader = model_shader(entry, &values, &varying)?;
-    let text = shader.write(args.lang.into())?;
+    let language = Language::from_name(&args.lang).expect("clap checks the name");
+    let text = shader.write(language)?;
     let Some(out) = &args.out else {
         if !shader.module.bindings().is_empty() {
             return Err(CliError::Shader(format!(
