@@ -116,7 +116,8 @@ fn tables_are_written_beside_the_module() {
     assert!(!ok && err.contains("give --out FILE"), "{err}");
     let dir = std::env::temp_dir().join(format!("hairmath-cli-shader-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let out = dir.join("gerard.wgsl");
+    // The folder of --out is created.
+    let out = dir.join("new").join("gerard.wgsl");
     let (ok, _, err) = shader(&[&gerard[..], &["--out", out.to_str().unwrap()]].concat());
     assert!(ok, "{err}");
     let wgsl = std::fs::read_to_string(&out).unwrap();
@@ -124,6 +125,7 @@ fn tables_are_written_beside_the_module() {
         wgsl.contains("textureLoad") && !wgsl.contains("textureSample"),
         "{wgsl}"
     );
+    let dir = dir.join("new");
     let bindings = std::fs::read_to_string(dir.join("gerard.bindings.json")).unwrap();
     assert!(
         bindings.contains("\"table\": \"gerard.lut0.f32\""),
@@ -134,7 +136,7 @@ fn tables_are_written_beside_the_module() {
         .len();
     assert!(raw > 0 && raw.is_multiple_of(4));
     assert!(dir.join("gerard.lut0.json").exists());
-    std::fs::remove_dir_all(&dir).unwrap();
+    std::fs::remove_dir_all(dir.parent().unwrap()).unwrap();
 }
 
 #[test]

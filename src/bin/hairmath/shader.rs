@@ -71,7 +71,15 @@ pub fn run(args: &ShaderArgs) -> Result<(), CliError> {
         stdout.write_all(&text)?;
         return Ok(stdout.flush()?);
     };
-    fs::write(out, &text)?;
+    write_files(
+        out.parent().unwrap_or(Path::new(".")),
+        &[CommittedFile {
+            name: out
+                .file_name()
+                .map_or_else(|| name.to_string(), |n| n.to_string_lossy().into_owned()),
+            contents: text,
+        }],
+    )?;
     if shader.module.bindings().is_empty() {
         return Ok(());
     }
