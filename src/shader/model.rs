@@ -99,15 +99,7 @@ impl Language {
 /// Why a model's shader cannot be made.
 #[derive(Debug, thiserror::Error)]
 pub enum ModelShaderError {
-    /// The model has no shader form (its evaluation does not trace).
-    #[error("{model} has no shader form: {reason}")]
-    NoShader {
-        /// The model.
-        model: &'static str,
-        /// Why.
-        reason: &'static str,
-    },
-    /// The values or the varying names do not fit the model.
+    /// The model has no shader form, or the values or the varying names do not fit it.
     #[error(transparent)]
     Input(#[from] ShaderInputError),
     /// The emitter failed.
@@ -130,19 +122,14 @@ pub struct ModelShader {
 /// that order, every other input baked.
 ///
 /// # Errors
-/// [`ModelShaderError::NoShader`] for a model that does not trace, [`ModelShaderError::Input`]
-/// for values or varying names the model does not accept, [`ModelShaderError::Shader`] if the
-/// emitter fails.
+/// [`ModelShaderError::Input`] for a model with no shader form (saying why) and for values or
+/// varying names the model does not accept, [`ModelShaderError::Shader`] if the emitter fails.
 pub fn model_shader(
     entry: &ModelEntry,
     values: &InputValues,
     varying: &[&str],
 ) -> Result<ModelShader, ModelShaderError> {
-    let shader = entry.shader.ok_or(ModelShaderError::NoShader {
-        model: entry.name,
-        reason: entry.summary,
-    })?;
-    let graph = (shader.trace)(values, varying)?;
+    let graph = entry.trace_shader(values, varying)?;
     let module = super::ModuleBuilder::new()
         .add(&graph, BCSDF_FUNCTION)?
         .comment(
