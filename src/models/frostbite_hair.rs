@@ -136,8 +136,8 @@ use super::unreal::{chiang_r_width_in_sines, r_azimuthal, Published, Refitted};
 use crate::absorption::PathLength;
 use crate::azimuthal::Refraction;
 use crate::bcsdf::{
-    eta_in, roughness_in, sum_lobes, tilt_in, AbsorptionInput, Bcsdf, FromInputs, Input,
-    InputValue, InputValues, InputsIn, Model, Query, VaryingInputs, HAIR_INPUTS,
+    eta_in, roughness_in, sum_lobes, tilt_in, Bcsdf, FromInputs, Input, InputValues, InputsIn,
+    Model, Query, VaryingInputs, HAIR_INPUTS,
 };
 use crate::error::ParamError;
 use crate::geometry::local_fibre_angles;
@@ -544,25 +544,13 @@ impl VaryingInputs for FrostbiteRefit<f64> {
     }
 }
 
-/// The hair's own parameters as the values of [`HAIR_INPUTS`], sigma_a as itself.
-fn hair_inputs_of(hair: &HairParams) -> InputValues {
-    let mut values = InputValues::new();
-    values.set("beta_m", InputValue::Number(hair.beta_m.get()));
-    values.set("beta_n", InputValue::Number(hair.beta_n.get()));
-    values.set("alpha", InputValue::Number(hair.alpha.get()));
-    values.set("eta", InputValue::Number(hair.eta.get()));
-    let sigma_a = AbsorptionInput::SigmaA(hair.sigma_a.rgb());
-    values.set("sigma_a", InputValue::Absorption(sigma_a));
-    values
-}
-
 /// The inputs a fit varies: the roughnesses and the absorption.
 const FROSTBITE_FITTED_INPUTS: [&str; 3] = ["beta_m", "beta_n", "sigma_a"];
 
 impl Approximation for Frostbite<f64> {
     /// The hair's own parameters (module documentation).
     fn mapped_inputs(hair: &HairParams) -> InputValues {
-        hair_inputs_of(hair)
+        hair.to_inputs()
     }
 
     const FITTED_INPUTS: &'static [&'static str] = &FROSTBITE_FITTED_INPUTS;
@@ -571,7 +559,7 @@ impl Approximation for Frostbite<f64> {
 impl Approximation for FrostbiteRefit<f64> {
     /// The hair's own parameters (module documentation).
     fn mapped_inputs(hair: &HairParams) -> InputValues {
-        hair_inputs_of(hair)
+        hair.to_inputs()
     }
 
     const FITTED_INPUTS: &'static [&'static str] = &FROSTBITE_FITTED_INPUTS;

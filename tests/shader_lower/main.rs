@@ -12,44 +12,19 @@
 mod interpret;
 
 use hairmath::bcsdf::{
-    trace_eval, trace_eval_with, traced_inputs, ChiangFarField, FarFieldRule, FromInputs,
-    InputKind, InputValue, InputValues, Model, UniformsIn, DEFAULT_FAR_FIELD_NODES,
+    trace_eval, trace_eval_with, traced_inputs, ChiangFarField, FarFieldRule, FromInputs, Model,
+    UniformsIn, DEFAULT_FAR_FIELD_NODES,
 };
 use hairmath::lut::{Axis, SharedTable, Table, TableMeta};
 use hairmath::params::HairParams;
 use hairmath::real::{trace, trace_with, ArgType, Graph, Parameter, ResultType, Signature};
 use hairmath::real::{Real, StructType, Traced};
-use hairmath::registry::{find_model, ModelEntry, MODELS};
+use hairmath::registry::{find_model, MODELS};
 use hairmath::shader::{lower, ModuleBuilder, ShaderError, ShaderModule, ENTRY_POINT};
 use interpret::{Interpreter, Texture, Value};
 use std::io::Write as _;
 use std::process::Command;
 use std::sync::Arc;
-
-/// The values of `entry`'s inputs as the command line builds them when no flag is given:
-/// each input's default, and for the inputs without one (the physical parameters of models
-/// built on them) the model's mapping of the default hair.
-fn default_values(entry: &ModelEntry) -> InputValues {
-    let mapped = entry
-        .approximation
-        .map(|a| (a.mapped_inputs)(&HairParams::default()));
-    let mut values = InputValues::new();
-    for input in entry.inputs {
-        let value = match (input.kind, input.default) {
-            (InputKind::Switch, _) => InputValue::Switch(false),
-            (InputKind::Angle, Some(d)) => InputValue::Number(d.to_radians()),
-            (InputKind::Count, Some(d)) => InputValue::Count(d as usize),
-            (InputKind::Rgb, Some(d)) => InputValue::Rgb([d; 3]),
-            (_, Some(d)) => InputValue::Number(d),
-            (_, None) => mapped
-                .as_ref()
-                .and_then(|m| m.get(input.name))
-                .unwrap_or_else(|| panic!("{}: no value for {}", entry.name, input.name)),
-        };
-        values.set(input.name, value);
-    }
-    values
-}
 
 /// The shader name of a model: `karis-refit` -> `karis_refit_eval`.
 fn shader_name(model: &str) -> String {
@@ -62,7 +37,7 @@ fn model_graphs() -> Vec<(String, Graph)> {
         .iter()
         .filter_map(|entry| {
             let approximation = entry.approximation?;
-            let graph = (approximation.trace)(&default_values(entry))
+            let graph = (approximation.trace)(&entry.example_values())
                 .unwrap_or_else(|e| panic!("{}: {e}", entry.name));
             Some((shader_name(entry.name), graph))
         })
@@ -624,7 +599,7 @@ fn model_rows<M: Model>(model: &M, graph: &Graph) -> Vec<Vec<f32>> {
 /// evaluation bit for bit.
 fn check_model<M: Model + FromInputs>(name: &str) {
     let entry = find_model(name).unwrap_or_else(|| panic!("{name} is registered"));
-    let model = M::from_inputs(&default_values(entry)).unwrap();
+    let model = M::from_inputs(&entry.example_values()).unwrap();
     for uniforms in [UniformsIn::Argument, UniformsIn::Constant] {
         let graph = trace_eval_with(&model, uniforms);
         let rows = model_rows(&model, &graph);
@@ -720,7 +695,7 @@ fn table_interpolation_matches_lookup_into_bit_for_bit_at_edges_and_outside() {
 /// The default Karis model and its graph with baked uniforms.
 fn karis() -> (hairmath::models::Karis<f64>, Graph) {
     let model =
-        hairmath::models::Karis::<f64>::from_inputs(&default_values(find_model("karis").unwrap()))
+        hairmath::models::Karis::<f64>::from_inputs(&find_model("karis").unwrap().example_values())
             .unwrap();
     let graph = trace_eval_with(&model, UniformsIn::Constant);
     (model, graph)
@@ -844,9 +819,9 @@ fn graphs_in_one_module_share_equal_functions_tables_and_constants() {
     let wgsl = together.wgsl().unwrap();
     reparse(&wgsl).unwrap_or_else(|e| panic!("{e}\n{wgsl}"));
     // The uniforms of the Argument form are arguments; baked ones of two models conflict.
-    let frostbite = hairmath::models::Frostbite::<f64>::from_inputs(&default_values(
-        find_model("frostbite").unwrap(),
-    ))
+    let frostbite = hairmath::models::Frostbite::<f64>::from_inputs(
+        &find_model("frostbite").unwrap().example_values(),
+    )
     .unwrap();
     let baked = trace_eval_with(&frostbite, UniformsIn::Constant);
     assert_eq!(
@@ -958,7 +933,7 @@ fn the_naga_oil_form_composes_into_a_shader_that_imports_it() {
     let (_, karis) = karis();
     let gerard = {
         let entry = find_model("gerard").unwrap();
-        let model = hairmath::models::Gerard::<f64>::from_inputs(&default_values(entry)).unwrap();
+        let model = hairmath::models::Gerard::<f64>::from_inputs(&entry.example_values()).unwrap();
         trace_eval_with(&model, UniformsIn::Constant)
     };
     for (path, graph) in [("hairmath::karis", &karis), ("hairmath::gerard", &gerard)] {
