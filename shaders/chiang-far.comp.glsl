@@ -31,19 +31,74 @@ struct FarFieldNodeElement {
     float h;
     float weight;
 };
+struct FibreAngles {
+    float sin_theta_i;
+    float cos_theta_i;
+    float sin_theta_o;
+    float cos_theta_o;
+    float phi;
+};
+struct FibrePath {
+    float gamma_o;
+    float gamma_t;
+    float segment_length;
+    float fresnel;
+};
+struct Attenuations {
+    float r;
+    float tt;
+    float trt;
+    float residual;
+};
+struct TrimmedLogistics {
+    float r;
+    float tt;
+    float trt;
+};
+struct FarFieldNode {
+    vec3 r;
+    vec3 tt;
+    vec3 trt;
+    vec3 residual;
+};
+struct FibreFrame {
+    vec3 tangent;
+    vec3 normal;
+    vec3 binormal;
+};
+struct FibreLocalDirections {
+    vec3 wi;
+    vec3 wo;
+};
 const ChiangUniforms uniforms = ChiangUniforms(0.08461118, 0.021152794, 0.3384447, 11.818769, 47.275078, 2.9546924, 11.818769, 47.275078, 2.9627328, 0.117159806, 8.535351, 1.0, 8.535351, 0.034899496, 0.99939084, 0.06975647, 0.9975641, 0.1391731, 0.99026805, 1.55, 0.6451613, vec3(0.5447, 0.9061, 1.781));
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const float TINY = 1e-30;
+// pi
+const float PI = 3.1415927;
+// 2 pi
+const float TWO_PI = 6.2831855;
+// 1 / (2 pi), the uniform density over a full turn
+const float INV_TWO_PI = 0.15915494;
+// 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
+const float BESSEL_I0_SWITCH = 3.75;
+// 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
+const float BESSEL_I0_INV_SWITCH = 0.26666668;
+// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75
+const float BESSEL_I0_NEAR[7] = float[7](1.0, 3.5156229, 3.0899425, 1.2067492, 0.2659732, 0.0360768, 0.0045813);
+// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
+const float BESSEL_I0_FAR[9] = float[9](0.3989423, 0.01328592, 0.00225319, -0.00157565, 0.00916281, -0.02057706, 0.02635537, -0.01647633, 0.00392377);
 const FarFieldNodeElement FAR_FIELD_OFFSETS[64] = FarFieldNodeElement[64](FarFieldNodeElement(0.9999994, 1.5289318e-6), FarFieldNodeElement(0.9999835, 1.872458e-5), FarFieldNodeElement(0.99990034, 7.211129e-5), FarFieldNodeElement(0.99965745, 0.00018185156), FarFieldNodeElement(0.9991224, 0.0003673992), FarFieldNodeElement(0.99812496, 0.0006472144), FarFieldNodeElement(0.99645925, 0.0010384569), FarFieldNodeElement(0.9938865, 0.0015566545), FarFieldNodeElement(0.9901389, 0.00221535), FarFieldNodeElement(0.9849239, 0.0030257301), FarFieldNodeElement(0.9779291, 0.003996244), FarFieldNodeElement(0.9688285, 0.005132225), FarFieldNodeElement(0.9572886, 0.006435525), FarFieldNodeElement(0.94297606, 0.007904187), FarFieldNodeElement(0.92556554, 0.009532163), FarFieldNodeElement(0.904748, 0.011309116), FarFieldNodeElement(0.8802395, 0.013220307), FarFieldNodeElement(0.85178995, 0.015246595), FarFieldNodeElement(0.81919193, 0.017364576), FarFieldNodeElement(0.78228873, 0.019546852), FarFieldNodeElement(0.74098223, 0.021762462), FarFieldNodeElement(0.69523925, 0.023977457), FarFieldNodeElement(0.6450969, 0.02615561), FarFieldNodeElement(0.5906664, 0.028259275), FarFieldNodeElement(0.5321349, 0.030250335), FarFieldNodeElement(0.46976525, 0.032091226), FarFieldNodeElement(0.4038941, 0.033746015), FarFieldNodeElement(0.33492747, 0.035181463), FarFieldNodeElement(0.26333427, 0.036368046), FarFieldNodeElement(0.18963791, 0.03728089), FarFieldNodeElement(0.11440627, 0.037900586), FarFieldNodeElement(0.038240023, 0.03821382), FarFieldNodeElement(-0.038240023, 0.03821382), FarFieldNodeElement(-0.11440627, 0.037900586), FarFieldNodeElement(-0.18963791, 0.03728089), FarFieldNodeElement(-0.26333427, 0.036368046), FarFieldNodeElement(-0.33492747, 0.035181463), FarFieldNodeElement(-0.4038941, 0.033746015), FarFieldNodeElement(-0.46976525, 0.032091226), FarFieldNodeElement(-0.5321349, 0.030250335), FarFieldNodeElement(-0.5906664, 0.028259275), FarFieldNodeElement(-0.6450969, 0.02615561), FarFieldNodeElement(-0.69523925, 0.023977457), FarFieldNodeElement(-0.74098223, 0.021762462), FarFieldNodeElement(-0.78228873, 0.019546852), FarFieldNodeElement(-0.81919193, 0.017364576), FarFieldNodeElement(-0.85178995, 0.015246595), FarFieldNodeElement(-0.8802395, 0.013220307), FarFieldNodeElement(-0.904748, 0.011309116), FarFieldNodeElement(-0.92556554, 0.009532163), FarFieldNodeElement(-0.94297606, 0.007904187), FarFieldNodeElement(-0.9572886, 0.006435525), FarFieldNodeElement(-0.9688285, 0.005132225), FarFieldNodeElement(-0.9779291, 0.003996244), FarFieldNodeElement(-0.9849239, 0.0030257301), FarFieldNodeElement(-0.9901389, 0.00221535), FarFieldNodeElement(-0.9938865, 0.0015566545), FarFieldNodeElement(-0.99645925, 0.0010384569), FarFieldNodeElement(-0.99812496, 0.0006472144), FarFieldNodeElement(-0.9991224, 0.0003673992), FarFieldNodeElement(-0.99965745, 0.00018185156), FarFieldNodeElement(-0.99990034, 7.211129e-5), FarFieldNodeElement(-0.9999835, 1.872458e-5), FarFieldNodeElement(-0.9999994, 1.5289318e-6));
 
-layout(std430, binding = 0) readonly buffer type_10_block_0Compute { float _group_0_binding_0_cs[]; };
+layout(std430, binding = 0) readonly buffer type_6_block_0Compute { float _group_0_binding_0_cs[]; };
 
-layout(std430, binding = 1) buffer type_10_block_1Compute { float _group_0_binding_1_cs[]; };
+layout(std430, binding = 1) buffer type_6_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
-float[5] fibre_angles(vec3 wi_in, vec3 wo_in) {
+FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
     float _e38 = (((1.0 * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0.0 * ((wi_in.z * 0.0) - (0.0 * wo_in.z)))) + (0.0 * ((0.0 * wo_in.y) - (wi_in.y * 0.0))));
     float _e43 = (((0.0 * 0.0) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return float[5](min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
+    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
 }
 
 // hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
@@ -61,30 +116,30 @@ float fresnel(float cos_i, float eta, float inv_eta) {
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-float[4] fibre_path(float h, float c2_, float inv_eta_1, float c3_, float eta_1) {
+FibrePath fibre_path(float h, float c2_, float inv_eta_1, float c3_, float eta_1) {
     float _e8 = min(max(h, -(1.0)), 1.0);
     float _e11 = (((_e8 * c2_) * inv_eta_1) * c3_);
     float _e16 = sqrt(max((1.0 - (_e11 * _e11)), 0.0));
     float _e20 = sqrt(max((1.0 - (_e8 * _e8)), 0.0));
     float _e22 = fresnel((c2_ * _e20), eta_1, inv_eta_1);
-    return float[4](atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * c3_), _e22);
+    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * c3_), _e22);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
-float[4] attenuations(float fresnel_in, float transmittance) {
+Attenuations attenuations(float fresnel_in, float transmittance) {
     float _e3 = (1.0 - fresnel_in);
     float _e5 = ((_e3 * _e3) * transmittance);
     float _e7 = ((_e5 * fresnel_in) * transmittance);
-    return float[4](fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1.0 - (fresnel_in * transmittance)), 1e-30)));
+    return Attenuations(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1.0 - (fresnel_in * transmittance)), TINY)));
 }
 
 // hairmath::azimuthal::exit_angle::exit_angle -- Marschner et al. 2003, eq. 3
 float exit_angle(float p, float gamma_i, float gamma_t) {
-    return ((((2.0 * p) * gamma_t) - (2.0 * gamma_i)) + (p * 3.1415927));
+    return ((((2.0 * p) * gamma_t) - (2.0 * gamma_i)) + (p * PI));
 }
 
 // hairmath::bcsdf::chiang::trimmed_logistics -- Chiang et al. 2016, eq. 13
-float[3] trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, float logistic_inv_scale, float logistic_norm) {
+TrimmedLogistics trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, float logistic_inv_scale, float logistic_norm) {
     float _e8 = exp((-(abs(dphi_r)) * logistic_inv_scale));
     float _e10 = (1.0 + _e8);
     float _e11 = (_e10 * _e10);
@@ -96,24 +151,24 @@ float[3] trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, float lo
     float _e23 = (_e22 * _e22);
     float _e27 = (logistic_norm / (((1.0 * _e11) * _e17) * _e23));
     float _e31 = (_e27 * _e11);
-    return float[3]((_e8 * ((_e27 * _e17) * _e23)), (_e15 * (_e31 * _e23)), (_e21 * (_e31 * _e17)));
+    return TrimmedLogistics((_e8 * ((_e27 * _e17) * _e23)), (_e15 * (_e31 * _e23)), (_e21 * (_e31 * _e17)));
 }
 
 // hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature
-float[12] far_field_node(float r_red_in, float r_green_in, float r_blue_in, float tt_red_in, float tt_green_in, float tt_blue_in, float trt_red_in, float trt_green_in, float trt_blue_in, float residual_red_in, float residual_green_in, float residual_blue_in, float h_1, float weight, float c0_, float inv_eta_2, float c2_1, float eta_2, float sigma_a_x, float sigma_a_y, float sigma_a_z, float c7_, float logistic_inv_scale_1, float logistic_norm_1) {
-    float _e24 = (c0_ * inv_eta_2);
-    float _e32[4] = fibre_path(h_1, c2_1, inv_eta_2, (1.0 / sqrt(max((1.0 - (_e24 * _e24)), 0.0))), eta_2);
-    float _e40[4] = attenuations(_e32[3], exp((-(sigma_a_x) * _e32[2])));
-    float _e48[4] = attenuations(_e32[3], exp((-(sigma_a_y) * _e32[2])));
-    float _e56[4] = attenuations(_e32[3], exp((-(sigma_a_z) * _e32[2])));
-    float _e61 = exit_angle(0.0, _e32[0], _e32[1]);
-    float _e62 = (c7_ - _e61);
-    float _e71 = exit_angle(1.0, _e32[0], _e32[1]);
-    float _e72 = (c7_ - _e71);
-    float _e79 = exit_angle(2.0, _e32[0], _e32[1]);
-    float _e80 = (c7_ - _e79);
-    float _e86[3] = trimmed_logistics((_e62 - (6.2831855 * floor(((_e62 + 3.1415927) * 0.15915494)))), (_e72 - (6.2831855 * floor(((_e72 + 3.1415927) * 0.15915494)))), (_e80 - (6.2831855 * floor(((_e80 + 3.1415927) * 0.15915494)))), logistic_inv_scale_1, logistic_norm_1);
-    return float[12]((r_red_in + (weight * (_e40[0] * _e86[0]))), (r_green_in + (weight * (_e48[0] * _e86[0]))), (r_blue_in + (weight * (_e56[0] * _e86[0]))), (tt_red_in + (weight * (_e40[1] * _e86[1]))), (tt_green_in + (weight * (_e48[1] * _e86[1]))), (tt_blue_in + (weight * (_e56[1] * _e86[1]))), (trt_red_in + (weight * (_e40[2] * _e86[2]))), (trt_green_in + (weight * (_e48[2] * _e86[2]))), (trt_blue_in + (weight * (_e56[2] * _e86[2]))), (residual_red_in + (weight * (_e40[3] * 0.15915494))), (residual_green_in + (weight * (_e48[3] * 0.15915494))), (residual_blue_in + (weight * (_e56[3] * 0.15915494))));
+FarFieldNode far_field_node(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 residual_in, float h_1, float weight, float c0_, float inv_eta_2, float c2_1, float eta_2, vec3 sigma_a, float c7_, float logistic_inv_scale_1, float logistic_norm_1) {
+    float _e26 = (c0_ * inv_eta_2);
+    FibrePath _e34 = fibre_path(h_1, c2_1, inv_eta_2, (1.0 / sqrt(max((1.0 - (_e26 * _e26)), 0.0))), eta_2);
+    Attenuations _e43 = attenuations(_e34.fresnel, exp((-(sigma_a.x) * _e34.segment_length)));
+    Attenuations _e52 = attenuations(_e34.fresnel, exp((-(sigma_a.y) * _e34.segment_length)));
+    Attenuations _e61 = attenuations(_e34.fresnel, exp((-(sigma_a.z) * _e34.segment_length)));
+    float _e66 = exit_angle(0.0, _e34.gamma_o, _e34.gamma_t);
+    float _e67 = (c7_ - _e66);
+    float _e76 = exit_angle(1.0, _e34.gamma_o, _e34.gamma_t);
+    float _e77 = (c7_ - _e76);
+    float _e84 = exit_angle(2.0, _e34.gamma_o, _e34.gamma_t);
+    float _e85 = (c7_ - _e84);
+    TrimmedLogistics _e91 = trimmed_logistics((_e67 - (TWO_PI * floor(((_e67 + PI) * INV_TWO_PI)))), (_e77 - (TWO_PI * floor(((_e77 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), logistic_inv_scale_1, logistic_norm_1);
+    return FarFieldNode(vec3((r_in.x + (weight * (_e43.r * _e91.r))), (r_in.y + (weight * (_e52.r * _e91.r))), (r_in.z + (weight * (_e61.r * _e91.r)))), vec3((tt_in.x + (weight * (_e43.tt * _e91.tt))), (tt_in.y + (weight * (_e52.tt * _e91.tt))), (tt_in.z + (weight * (_e61.tt * _e91.tt)))), vec3((trt_in.x + (weight * (_e43.trt * _e91.trt))), (trt_in.y + (weight * (_e52.trt * _e91.trt))), (trt_in.z + (weight * (_e61.trt * _e91.trt)))), vec3((residual_in.x + (weight * (_e43.residual * INV_TWO_PI))), (residual_in.y + (weight * (_e52.residual * INV_TWO_PI))), (residual_in.z + (weight * (_e61.residual * INV_TWO_PI)))));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
@@ -122,105 +177,65 @@ float deon_lobe(float sin_i, float cos_i_1, float sin_o, float cos_o, float inv_
     float _e9 = (_e7 - (sin_i * sin_o));
     float _e12 = ((sin_i * cos_o) + (cos_i_1 * sin_o));
     float _e22 = max((_e7 * inv_variance_r), 0.0);
-    float _e27 = (min(_e22, 3.75) * 0.26666668);
+    float _e27 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
     float _e28 = (_e27 * _e27);
-    float _e47 = (1.0 / max(_e22, 3.75));
-    float _e48 = (3.75 * _e47);
-    bool _e76 = (_e22 < 3.75);
-    return ((lobe_norm_r * (_e76 ? ((((((((((((0.0045813 * _e28) + 0.0360768) * _e28) + 0.2659732) * _e28) + 1.2067492) * _e28) + 3.0899425) * _e28) + 3.5156229) * _e28) + 1.0) : (((((((((((((((((0.00392377 * _e48) + -0.01647633) * _e48) + 0.02635537) * _e48) + -0.02057706) * _e48) + 0.00916281) * _e48) + -0.00157565) * _e48) + 0.00225319) * _e48) + 0.01328592) * _e48) + 0.3989423) * sqrt(_e47)))) * exp(((_e76 ? -(_e22) : 0.0) - (((0.0 < _e9) ? ((_e12 * _e12) / (1.0 + max(_e9, 0.0))) : (1.0 - _e9)) * inv_variance_r))));
+    float _e55 = (1.0 / max(_e22, BESSEL_I0_SWITCH));
+    float _e56 = (BESSEL_I0_SWITCH * _e55);
+    bool _e93 = (_e22 < BESSEL_I0_SWITCH);
+    return ((lobe_norm_r * (_e93 ? ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e56) + BESSEL_I0_FAR[7]) * _e56) + BESSEL_I0_FAR[6]) * _e56) + BESSEL_I0_FAR[5]) * _e56) + BESSEL_I0_FAR[4]) * _e56) + BESSEL_I0_FAR[3]) * _e56) + BESSEL_I0_FAR[2]) * _e56) + BESSEL_I0_FAR[1]) * _e56) + BESSEL_I0_FAR[0]) * sqrt(_e55)))) * exp(((_e93 ? -(_e22) : 0.0) - (((0.0 < _e9) ? ((_e12 * _e12) / (1.0 + max(_e9, 0.0))) : (1.0 - _e9)) * inv_variance_r))));
 }
 
 // hair_bcsdf: `hairmath eval --model chiang-far`, the far field of Chiang et al. 2016: S(wi, wo) averaged over h uniform in [-1, 1], with a fixed Gauss-Legendre rule over h or the adaptive reference
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
-    float r_red = 0.0;
-    float r_green = 0.0;
-    float r_blue = 0.0;
-    float tt_red = 0.0;
-    float tt_green = 0.0;
-    float tt_blue = 0.0;
-    float trt_red = 0.0;
-    float trt_green = 0.0;
-    float trt_blue = 0.0;
-    float residual_red = 0.0;
-    float residual_green = 0.0;
-    float residual_blue = 0.0;
+    vec3 r = vec3(0.0);
+    vec3 tt = vec3(0.0);
+    vec3 trt = vec3(0.0);
+    vec3 residual = vec3(0.0);
     uint k = 0u;
-    float _e50[5] = fibre_angles(wi, wo);
-    r_red = 0.0;
-    r_green = 0.0;
-    r_blue = 0.0;
-    tt_red = 0.0;
-    tt_green = 0.0;
-    tt_blue = 0.0;
-    trt_red = 0.0;
-    trt_green = 0.0;
-    trt_blue = 0.0;
-    residual_red = 0.0;
-    residual_green = 0.0;
-    residual_blue = 0.0;
+    FibreAngles _e30 = fibre_angles(wi, wo);
+    r = vec3(0.0, 0.0, 0.0);
+    tt = vec3(0.0, 0.0, 0.0);
+    trt = vec3(0.0, 0.0, 0.0);
+    residual = vec3(0.0, 0.0, 0.0);
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e104 = k;
-            k = (_e104 + 1u);
+            uint _e64 = k;
+            k = (_e64 + 1u);
         }
         loop_init = false;
-        uint _e71 = k;
-        if ((_e71 < 64u)) {
+        uint _e47 = k;
+        if ((_e47 < 64u)) {
         } else {
             break;
         }
-        uint _e75 = k;
-        float _e77 = r_red;
-        float _e78 = r_green;
-        float _e79 = r_blue;
-        float _e80 = tt_red;
-        float _e81 = tt_green;
-        float _e82 = tt_blue;
-        float _e83 = trt_red;
-        float _e84 = trt_green;
-        float _e85 = trt_blue;
-        float _e86 = residual_red;
-        float _e87 = residual_green;
-        float _e88 = residual_blue;
-        float _e91[12] = far_field_node(_e77, _e78, _e79, _e80, _e81, _e82, _e83, _e84, _e85, _e86, _e87, _e88, FAR_FIELD_OFFSETS[_e75].h, FAR_FIELD_OFFSETS[_e75].weight, _e50[2], uniforms.inv_eta, _e50[3], uniforms.eta, uniforms.sigma_a.x, uniforms.sigma_a.y, uniforms.sigma_a.z, -(_e50[4]), uniforms.logistic_inv_scale, uniforms.logistic_norm);
-        r_red = _e91[0];
-        r_green = _e91[1];
-        r_blue = _e91[2];
-        tt_red = _e91[3];
-        tt_green = _e91[4];
-        tt_blue = _e91[5];
-        trt_red = _e91[6];
-        trt_green = _e91[7];
-        trt_blue = _e91[8];
-        residual_red = _e91[9];
-        residual_green = _e91[10];
-        residual_blue = _e91[11];
+        uint _e51 = k;
+        vec3 _e53 = r;
+        vec3 _e54 = tt;
+        vec3 _e55 = trt;
+        vec3 _e56 = residual;
+        FarFieldNode _e59 = far_field_node(_e53, _e54, _e55, _e56, FAR_FIELD_OFFSETS[_e51].h, FAR_FIELD_OFFSETS[_e51].weight, _e30.sin_theta_o, uniforms.inv_eta, _e30.cos_theta_o, uniforms.eta, uniforms.sigma_a, -(_e30.phi), uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        r = _e59.r;
+        tt = _e59.tt;
+        trt = _e59.trt;
+        residual = _e59.residual;
     }
-    float _e107 = r_red;
-    float _e108 = r_green;
-    float _e109 = r_blue;
-    float _e110 = tt_red;
-    float _e111 = tt_green;
-    float _e112 = tt_blue;
-    float _e113 = trt_red;
-    float _e114 = trt_green;
-    float _e115 = trt_blue;
-    float _e116 = residual_red;
-    float _e117 = residual_green;
-    float _e118 = residual_blue;
-    float _e119 = -(uniforms.sin_2_alpha);
-    float _e127 = deon_lobe(_e50[0], _e50[1], ((_e50[2] * uniforms.cos_2_alpha) + (_e50[3] * _e119)), abs(((_e50[3] * uniforms.cos_2_alpha) - (_e50[2] * _e119))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
-    float _e135 = deon_lobe(_e50[0], _e50[1], ((_e50[2] * uniforms.cos_alpha) + (_e50[3] * uniforms.sin_alpha)), abs(((_e50[3] * uniforms.cos_alpha) - (_e50[2] * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
-    float _e143 = deon_lobe(_e50[0], _e50[1], ((_e50[2] * uniforms.cos_4_alpha) + (_e50[3] * uniforms.sin_4_alpha)), abs(((_e50[3] * uniforms.cos_4_alpha) - (_e50[2] * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    float _e144 = deon_lobe(_e50[0], _e50[1], _e50[2], _e50[3], uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    return vec3(((((0.0 + (_e127 * _e107)) + (_e135 * _e110)) + (_e143 * _e113)) + (_e144 * _e116)), ((((0.0 + (_e127 * _e108)) + (_e135 * _e111)) + (_e143 * _e114)) + (_e144 * _e117)), ((((0.0 + (_e127 * _e109)) + (_e135 * _e112)) + (_e143 * _e115)) + (_e144 * _e118)));
+    vec3 _e67 = r;
+    vec3 _e68 = tt;
+    vec3 _e69 = trt;
+    vec3 _e70 = residual;
+    float _e83 = -(uniforms.sin_2_alpha);
+    float _e91 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e83)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) - (_e30.sin_theta_o * _e83))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    float _e99 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    float _e107 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    float _e108 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    return vec3(((((0.0 + (_e91 * _e67.x)) + (_e99 * _e68.x)) + (_e107 * _e69.x)) + (_e108 * _e70.x)), ((((0.0 + (_e91 * _e67.y)) + (_e99 * _e68.y)) + (_e107 * _e69.y)) + (_e108 * _e70.y)), ((((0.0 + (_e91 * _e67.z)) + (_e99 * _e68.z)) + (_e107 * _e69.z)) + (_e108 * _e70.z)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-float[9] fibre_frame(vec3 tangent_in) {
-    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 1e-30));
+FibreFrame fibre_frame(vec3 tangent_in) {
+    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     float _e14 = (tangent_in.x * _e13);
     float _e15 = (tangent_in.y * _e13);
     float _e16 = (tangent_in.z * _e13);
@@ -228,20 +243,20 @@ float[9] fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return float[9](_e14, _e15, _e16, (1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-float[6] fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e12[9] = fibre_frame(tangent);
-    return float[6]((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
+    FibreFrame _e12 = fibre_frame(tangent);
+    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 vec3 hair_bcsdf_world(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e3[6] = fibre_local_directions(tangent, wi, wo);
-    vec3 _e12 = hair_bcsdf(vec3(_e3[0], _e3[1], _e3[2]), vec3(_e3[3], _e3[4], _e3[5]));
-    return _e12;
+    FibreLocalDirections _e3 = fibre_local_directions(tangent, wi, wo);
+    vec3 _e6 = hair_bcsdf(_e3.wi, _e3.wo);
+    return _e6;
 }
 
 void main() {

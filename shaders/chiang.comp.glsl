@@ -27,18 +27,67 @@ struct ChiangUniforms {
     float inv_eta;
     vec3 sigma_a;
 };
+struct FibreAngles {
+    float sin_theta_i;
+    float cos_theta_i;
+    float sin_theta_o;
+    float cos_theta_o;
+    float phi;
+};
+struct FibrePath {
+    float gamma_o;
+    float gamma_t;
+    float segment_length;
+    float fresnel;
+};
+struct Attenuations {
+    float r;
+    float tt;
+    float trt;
+    float residual;
+};
+struct TrimmedLogistics {
+    float r;
+    float tt;
+    float trt;
+};
+struct FibreFrame {
+    vec3 tangent;
+    vec3 normal;
+    vec3 binormal;
+};
+struct FibreLocalDirections {
+    vec3 wi;
+    vec3 wo;
+};
 const ChiangUniforms uniforms = ChiangUniforms(0.08461118, 0.021152794, 0.3384447, 11.818769, 47.275078, 2.9546924, 11.818769, 47.275078, 2.9627328, 0.117159806, 8.535351, 1.0, 8.535351, 0.034899496, 0.99939084, 0.06975647, 0.9975641, 0.1391731, 0.99026805, 1.55, 0.6451613, vec3(0.5447, 0.9061, 1.781));
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const float TINY = 1e-30;
+// pi
+const float PI = 3.1415927;
+// 2 pi
+const float TWO_PI = 6.2831855;
+// 1 / (2 pi), the uniform density over a full turn
+const float INV_TWO_PI = 0.15915494;
+// 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
+const float BESSEL_I0_SWITCH = 3.75;
+// 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
+const float BESSEL_I0_INV_SWITCH = 0.26666668;
+// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75
+const float BESSEL_I0_NEAR[7] = float[7](1.0, 3.5156229, 3.0899425, 1.2067492, 0.2659732, 0.0360768, 0.0045813);
+// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
+const float BESSEL_I0_FAR[9] = float[9](0.3989423, 0.01328592, 0.00225319, -0.00157565, 0.00916281, -0.02057706, 0.02635537, -0.01647633, 0.00392377);
 
-layout(std430, binding = 0) readonly buffer type_8_block_0Compute { float _group_0_binding_0_cs[]; };
+layout(std430, binding = 0) readonly buffer type_5_block_0Compute { float _group_0_binding_0_cs[]; };
 
-layout(std430, binding = 1) buffer type_8_block_1Compute { float _group_0_binding_1_cs[]; };
+layout(std430, binding = 1) buffer type_5_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
-float[5] fibre_angles(vec3 wi_in, vec3 wo_in) {
+FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
     float _e38 = (((1.0 * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0.0 * ((wi_in.z * 0.0) - (0.0 * wo_in.z)))) + (0.0 * ((0.0 * wo_in.y) - (wi_in.y * 0.0))));
     float _e43 = (((0.0 * 0.0) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return float[5](min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
+    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
 }
 
 // hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
@@ -56,30 +105,30 @@ float fresnel(float cos_i, float eta, float inv_eta) {
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-float[4] fibre_path(float h_in, float c0_, float inv_eta_1, float c2_, float eta_1) {
+FibrePath fibre_path(float h_in, float c0_, float inv_eta_1, float c2_, float eta_1) {
     float _e8 = min(max(h_in, -(1.0)), 1.0);
     float _e11 = (((_e8 * c0_) * inv_eta_1) * c2_);
     float _e16 = sqrt(max((1.0 - (_e11 * _e11)), 0.0));
     float _e20 = sqrt(max((1.0 - (_e8 * _e8)), 0.0));
     float _e22 = fresnel((c0_ * _e20), eta_1, inv_eta_1);
-    return float[4](atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * c2_), _e22);
+    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * c2_), _e22);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
-float[4] attenuations(float fresnel_in, float transmittance) {
+Attenuations attenuations(float fresnel_in, float transmittance) {
     float _e3 = (1.0 - fresnel_in);
     float _e5 = ((_e3 * _e3) * transmittance);
     float _e7 = ((_e5 * fresnel_in) * transmittance);
-    return float[4](fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1.0 - (fresnel_in * transmittance)), 1e-30)));
+    return Attenuations(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1.0 - (fresnel_in * transmittance)), TINY)));
 }
 
 // hairmath::azimuthal::exit_angle::exit_angle -- Marschner et al. 2003, eq. 3
 float exit_angle(float p, float gamma_i, float gamma_t) {
-    return ((((2.0 * p) * gamma_t) - (2.0 * gamma_i)) + (p * 3.1415927));
+    return ((((2.0 * p) * gamma_t) - (2.0 * gamma_i)) + (p * PI));
 }
 
 // hairmath::bcsdf::chiang::trimmed_logistics -- Chiang et al. 2016, eq. 13
-float[3] trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, float logistic_inv_scale, float logistic_norm) {
+TrimmedLogistics trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, float logistic_inv_scale, float logistic_norm) {
     float _e8 = exp((-(abs(dphi_r)) * logistic_inv_scale));
     float _e10 = (1.0 + _e8);
     float _e11 = (_e10 * _e10);
@@ -91,7 +140,7 @@ float[3] trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, float lo
     float _e23 = (_e22 * _e22);
     float _e27 = (logistic_norm / (((1.0 * _e11) * _e17) * _e23));
     float _e31 = (_e27 * _e11);
-    return float[3]((_e8 * ((_e27 * _e17) * _e23)), (_e15 * (_e31 * _e23)), (_e21 * (_e31 * _e17)));
+    return TrimmedLogistics((_e8 * ((_e27 * _e17) * _e23)), (_e15 * (_e31 * _e23)), (_e21 * (_e31 * _e17)));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
@@ -100,42 +149,42 @@ float deon_lobe(float sin_i, float cos_i_1, float sin_o, float cos_o, float inv_
     float _e9 = (_e7 - (sin_i * sin_o));
     float _e12 = ((sin_i * cos_o) + (cos_i_1 * sin_o));
     float _e22 = max((_e7 * inv_variance_r), 0.0);
-    float _e27 = (min(_e22, 3.75) * 0.26666668);
+    float _e27 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
     float _e28 = (_e27 * _e27);
-    float _e47 = (1.0 / max(_e22, 3.75));
-    float _e48 = (3.75 * _e47);
-    bool _e76 = (_e22 < 3.75);
-    return ((lobe_norm_r * (_e76 ? ((((((((((((0.0045813 * _e28) + 0.0360768) * _e28) + 0.2659732) * _e28) + 1.2067492) * _e28) + 3.0899425) * _e28) + 3.5156229) * _e28) + 1.0) : (((((((((((((((((0.00392377 * _e48) + -0.01647633) * _e48) + 0.02635537) * _e48) + -0.02057706) * _e48) + 0.00916281) * _e48) + -0.00157565) * _e48) + 0.00225319) * _e48) + 0.01328592) * _e48) + 0.3989423) * sqrt(_e47)))) * exp(((_e76 ? -(_e22) : 0.0) - (((0.0 < _e9) ? ((_e12 * _e12) / (1.0 + max(_e9, 0.0))) : (1.0 - _e9)) * inv_variance_r))));
+    float _e55 = (1.0 / max(_e22, BESSEL_I0_SWITCH));
+    float _e56 = (BESSEL_I0_SWITCH * _e55);
+    bool _e93 = (_e22 < BESSEL_I0_SWITCH);
+    return ((lobe_norm_r * (_e93 ? ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e56) + BESSEL_I0_FAR[7]) * _e56) + BESSEL_I0_FAR[6]) * _e56) + BESSEL_I0_FAR[5]) * _e56) + BESSEL_I0_FAR[4]) * _e56) + BESSEL_I0_FAR[3]) * _e56) + BESSEL_I0_FAR[2]) * _e56) + BESSEL_I0_FAR[1]) * _e56) + BESSEL_I0_FAR[0]) * sqrt(_e55)))) * exp(((_e93 ? -(_e22) : 0.0) - (((0.0 < _e9) ? ((_e12 * _e12) / (1.0 + max(_e9, 0.0))) : (1.0 - _e9)) * inv_variance_r))));
 }
 
 // hair_bcsdf: `hairmath eval --model chiang`, Chiang et al. 2016 (pbrt-v4 HairBxDF): the near-field reference, S(wi, wo, h)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo, float h) {
-    float _e50[5] = fibre_angles(wi, wo);
-    float _e56 = -(_e50[4]);
-    float _e57 = (_e50[2] * uniforms.inv_eta);
-    float _e65[4] = fibre_path(h, _e50[3], uniforms.inv_eta, (1.0 / sqrt(max((1.0 - (_e57 * _e57)), 0.0))), uniforms.eta);
-    float _e73[4] = attenuations(_e65[3], exp((-(uniforms.sigma_a.x) * _e65[2])));
-    float _e81[4] = attenuations(_e65[3], exp((-(uniforms.sigma_a.y) * _e65[2])));
-    float _e89[4] = attenuations(_e65[3], exp((-(uniforms.sigma_a.z) * _e65[2])));
-    float _e94 = exit_angle(0.0, _e65[0], _e65[1]);
-    float _e95 = (_e56 - _e94);
-    float _e104 = exit_angle(1.0, _e65[0], _e65[1]);
-    float _e105 = (_e56 - _e104);
-    float _e112 = exit_angle(2.0, _e65[0], _e65[1]);
-    float _e113 = (_e56 - _e112);
-    float _e119[3] = trimmed_logistics((_e95 - (6.2831855 * floor(((_e95 + 3.1415927) * 0.15915494)))), (_e105 - (6.2831855 * floor(((_e105 + 3.1415927) * 0.15915494)))), (_e113 - (6.2831855 * floor(((_e113 + 3.1415927) * 0.15915494)))), uniforms.logistic_inv_scale, uniforms.logistic_norm);
-    float _e135 = -(uniforms.sin_2_alpha);
-    float _e143 = deon_lobe(_e50[0], _e50[1], ((_e50[2] * uniforms.cos_2_alpha) + (_e50[3] * _e135)), abs(((_e50[3] * uniforms.cos_2_alpha) - (_e50[2] * _e135))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
-    float _e151 = deon_lobe(_e50[0], _e50[1], ((_e50[2] * uniforms.cos_alpha) + (_e50[3] * uniforms.sin_alpha)), abs(((_e50[3] * uniforms.cos_alpha) - (_e50[2] * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
-    float _e159 = deon_lobe(_e50[0], _e50[1], ((_e50[2] * uniforms.cos_4_alpha) + (_e50[3] * uniforms.sin_4_alpha)), abs(((_e50[3] * uniforms.cos_4_alpha) - (_e50[2] * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    float _e160 = deon_lobe(_e50[0], _e50[1], _e50[2], _e50[3], uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    return vec3(((((0.0 + (_e143 * (_e73[0] * _e119[0]))) + (_e151 * (_e73[1] * _e119[1]))) + (_e159 * (_e73[2] * _e119[2]))) + (_e160 * (_e73[3] * 0.15915494))), ((((0.0 + (_e143 * (_e81[0] * _e119[0]))) + (_e151 * (_e81[1] * _e119[1]))) + (_e159 * (_e81[2] * _e119[2]))) + (_e160 * (_e81[3] * 0.15915494))), ((((0.0 + (_e143 * (_e89[0] * _e119[0]))) + (_e151 * (_e89[1] * _e119[1]))) + (_e159 * (_e89[2] * _e119[2]))) + (_e160 * (_e89[3] * 0.15915494))));
+    FibreAngles _e30 = fibre_angles(wi, wo);
+    float _e36 = -(_e30.phi);
+    float _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
+    FibrePath _e45 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, (1.0 / sqrt(max((1.0 - (_e37 * _e37)), 0.0))), uniforms.eta);
+    Attenuations _e53 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.x) * _e45.segment_length)));
+    Attenuations _e61 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.y) * _e45.segment_length)));
+    Attenuations _e69 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.z) * _e45.segment_length)));
+    float _e74 = exit_angle(0.0, _e45.gamma_o, _e45.gamma_t);
+    float _e75 = (_e36 - _e74);
+    float _e84 = exit_angle(1.0, _e45.gamma_o, _e45.gamma_t);
+    float _e85 = (_e36 - _e84);
+    float _e92 = exit_angle(2.0, _e45.gamma_o, _e45.gamma_t);
+    float _e93 = (_e36 - _e92);
+    TrimmedLogistics _e99 = trimmed_logistics((_e75 - (TWO_PI * floor(((_e75 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), (_e93 - (TWO_PI * floor(((_e93 + PI) * INV_TWO_PI)))), uniforms.logistic_inv_scale, uniforms.logistic_norm);
+    float _e115 = -(uniforms.sin_2_alpha);
+    float _e123 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e115)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) - (_e30.sin_theta_o * _e115))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    float _e131 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    float _e139 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    float _e140 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    return vec3(((((0.0 + (_e123 * (_e53.r * _e99.r))) + (_e131 * (_e53.tt * _e99.tt))) + (_e139 * (_e53.trt * _e99.trt))) + (_e140 * (_e53.residual * INV_TWO_PI))), ((((0.0 + (_e123 * (_e61.r * _e99.r))) + (_e131 * (_e61.tt * _e99.tt))) + (_e139 * (_e61.trt * _e99.trt))) + (_e140 * (_e61.residual * INV_TWO_PI))), ((((0.0 + (_e123 * (_e69.r * _e99.r))) + (_e131 * (_e69.tt * _e99.tt))) + (_e139 * (_e69.trt * _e99.trt))) + (_e140 * (_e69.residual * INV_TWO_PI))));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-float[9] fibre_frame(vec3 tangent_in) {
-    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 1e-30));
+FibreFrame fibre_frame(vec3 tangent_in) {
+    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     float _e14 = (tangent_in.x * _e13);
     float _e15 = (tangent_in.y * _e13);
     float _e16 = (tangent_in.z * _e13);
@@ -143,20 +192,20 @@ float[9] fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return float[9](_e14, _e15, _e16, (1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-float[6] fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e12[9] = fibre_frame(tangent);
-    return float[6]((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
+    FibreFrame _e12 = fibre_frame(tangent);
+    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 vec3 hair_bcsdf_world(vec3 tangent, vec3 wi, vec3 wo, float h) {
-    float _e4[6] = fibre_local_directions(tangent, wi, wo);
-    vec3 _e13 = hair_bcsdf(vec3(_e4[0], _e4[1], _e4[2]), vec3(_e4[3], _e4[4], _e4[5]), h);
-    return _e13;
+    FibreLocalDirections _e4 = fibre_local_directions(tangent, wi, wo);
+    vec3 _e7 = hair_bcsdf(_e4.wi, _e4.wo, h);
+    return _e7;
 }
 
 void main() {

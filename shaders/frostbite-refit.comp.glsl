@@ -15,14 +15,48 @@ struct FrostbiteUniforms {
     float beta_n;
     float trt_scale;
 };
+struct FibreAngles {
+    float sin_theta_i;
+    float cos_theta_i;
+    float sin_theta_o;
+    float cos_theta_o;
+    float phi;
+};
+struct FibrePath {
+    float gamma_o;
+    float gamma_t;
+    float segment_length;
+    float fresnel;
+};
+struct Attenuations {
+    float r;
+    float tt;
+    float trt;
+    float residual;
+};
+struct FibreFrame {
+    vec3 tangent;
+    vec3 normal;
+    vec3 binormal;
+};
+struct FibreLocalDirections {
+    vec3 wi;
+    vec3 wo;
+};
 const FrostbiteUniforms uniforms = FrostbiteUniforms(0.27830222, 0.13915111, 0.55660444, 0.06979899, -0.03490481, -0.10467191, 1.55, vec3(0.5447, 0.9061, 1.781), 0.3, 1.0);
+// sqrt(2 pi), the normalisation of the Gaussian
+const float SQRT_TWO_PI = 2.5066283;
+// pi
+const float PI = 3.1415927;
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const float TINY = 1e-30;
 
 // lut0_frostbite_tt_texels: 9 x 10 texels (theta_o in [0, 1.3962634] along x, beta_n in [0.1, 1] along y); x, y = a, b; rgba32float, read with textureLoad
 layout(binding = 2) uniform sampler2D _group_1_binding_0_cs;
 
-layout(std430, binding = 0) readonly buffer type_10_block_0Compute { float _group_0_binding_0_cs[]; };
+layout(std430, binding = 0) readonly buffer type_6_block_0Compute { float _group_0_binding_0_cs[]; };
 
-layout(std430, binding = 1) buffer type_10_block_1Compute { float _group_0_binding_1_cs[]; };
+layout(std430, binding = 1) buffer type_6_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
 // table 0 (frostbite_tt): 2 axes, 2 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into
@@ -47,16 +81,16 @@ vec4 lut0_frostbite_tt(float theta_o, float beta_n) {
 }
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
-float[5] fibre_angles(vec3 wi_in, vec3 wo_in) {
+FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
     float _e38 = (((1.0 * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0.0 * ((wi_in.z * 0.0) - (0.0 * wo_in.z)))) + (0.0 * ((0.0 * wo_in.y) - (wi_in.y * 0.0))));
     float _e43 = (((0.0 * 0.0) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return float[5](min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
+    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
 }
 
 // hairmath::lobe::gaussian::gaussian_lobe -- Marschner et al. 2003, eq. 6
 float gaussian_lobe(float beta, float x) {
     float _e2 = (x / beta);
-    return (exp(((-0.5 * _e2) * _e2)) / (beta * 2.5066283));
+    return (exp(((-0.5 * _e2) * _e2)) / (beta * SQRT_TWO_PI));
 }
 
 // hairmath::fresnel::fresnel_schlick -- Schlick 1994, eq. 24
@@ -70,7 +104,7 @@ float fresnel_schlick(float cos_i, float eta) {
 
 // hairmath::models::frostbite::tt_gaussian -- Tafuri 2019, slide 19
 float tt_gaussian(float phi, float a, float b) {
-    float _e6 = (abs(phi) - 3.1415927);
+    float _e6 = (abs(phi) - PI);
     return (a * exp((-(b) * (_e6 * _e6))));
 }
 
@@ -89,57 +123,57 @@ float fresnel(float cos_i_1, float eta_1, float inv_eta) {
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-float[4] fibre_path(float h, float c0_, float c1_, float c2_, float eta_2) {
+FibrePath fibre_path(float h, float c0_, float c1_, float c2_, float eta_2) {
     float _e8 = min(max(h, -(1.0)), 1.0);
     float _e11 = (((_e8 * c0_) * c1_) * c2_);
     float _e16 = sqrt(max((1.0 - (_e11 * _e11)), 0.0));
     float _e20 = sqrt(max((1.0 - (_e8 * _e8)), 0.0));
     float _e22 = fresnel((c0_ * _e20), eta_2, c1_);
-    return float[4](atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * c2_), _e22);
+    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * c2_), _e22);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
-float[4] attenuations(float fresnel_in, float transmittance) {
+Attenuations attenuations(float fresnel_in, float transmittance) {
     float _e3 = (1.0 - fresnel_in);
     float _e5 = ((_e3 * _e3) * transmittance);
     float _e7 = ((_e5 * fresnel_in) * transmittance);
-    return float[4](fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1.0 - (fresnel_in * transmittance)), 1e-30)));
+    return Attenuations(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1.0 - (fresnel_in * transmittance)), TINY)));
 }
 
 // hair_bcsdf: `hairmath eval --model frostbite-refit`, Frostbite 2019 with hairmath's refitted single offsets of the TT and TRT attenuations (h = 0.600 and 0.719), S(wi, wo)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
-    float _e36[5] = fibre_angles(wi, wo);
-    float _e41 = (_e36[0] + _e36[2]);
-    float _e55 = gaussian_lobe(uniforms.width_r, (_e41 - uniforms.shift_r));
-    float _e64 = fresnel_schlick(sqrt(min(max((0.5 + (0.5 * (((wi.x * wo.x) + (wi.y * wo.y)) + (wi.z * wo.z)))), 0.0), 1.0)), uniforms.eta);
-    float _e66 = (_e55 * ((0.25 * max(cos((0.5 * _e36[4])), 0.0)) * _e64));
-    float _e68 = gaussian_lobe(uniforms.width_tt, (_e41 - uniforms.shift_tt));
-    vec4 _e69 = lut0_frostbite_tt(abs(atan(_e36[2], _e36[3])), uniforms.beta_n);
-    float _e72 = tt_gaussian(_e36[4], _e69.x, _e69.y);
-    float _e73 = (_e68 * _e72);
-    float _e74 = (1.0 / uniforms.eta);
-    float _e75 = (_e36[2] * _e74);
-    float _e80 = (1.0 / sqrt(max((1.0 - (_e75 * _e75)), 0.0)));
-    float _e82[4] = fibre_path(0.6002789, _e36[3], _e74, _e80, uniforms.eta);
-    float _e85 = -(uniforms.sigma_a.x);
-    float _e88[4] = attenuations(_e82[3], exp((_e85 * _e82[2])));
-    float _e90 = -(uniforms.sigma_a.y);
-    float _e93[4] = attenuations(_e82[3], exp((_e90 * _e82[2])));
-    float _e95 = -(uniforms.sigma_a.z);
-    float _e98[4] = attenuations(_e82[3], exp((_e95 * _e82[2])));
-    float _e104 = gaussian_lobe(uniforms.width_trt, (_e41 - uniforms.shift_trt));
-    float _e112 = (_e104 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((17.0 * cos(_e36[4])) + -16.78)))));
-    float _e114[4] = fibre_path(0.71930504, _e36[3], _e74, _e80, uniforms.eta);
-    float _e119[4] = attenuations(_e114[3], exp((_e85 * _e114[2])));
-    float _e123[4] = attenuations(_e114[3], exp((_e90 * _e114[2])));
-    float _e127[4] = attenuations(_e114[3], exp((_e95 * _e114[2])));
-    return vec3(((_e66 + (_e73 * _e88[1])) + (_e112 * _e119[2])), ((_e66 + (_e73 * _e93[1])) + (_e112 * _e123[2])), ((_e66 + (_e73 * _e98[1])) + (_e112 * _e127[2])));
+    FibreAngles _e23 = fibre_angles(wi, wo);
+    float _e28 = (_e23.sin_theta_i + _e23.sin_theta_o);
+    float _e42 = gaussian_lobe(uniforms.width_r, (_e28 - uniforms.shift_r));
+    float _e51 = fresnel_schlick(sqrt(min(max((0.5 + (0.5 * (((wi.x * wo.x) + (wi.y * wo.y)) + (wi.z * wo.z)))), 0.0), 1.0)), uniforms.eta);
+    float _e53 = (_e42 * ((0.25 * max(cos((0.5 * _e23.phi)), 0.0)) * _e51));
+    float _e55 = gaussian_lobe(uniforms.width_tt, (_e28 - uniforms.shift_tt));
+    vec4 _e56 = lut0_frostbite_tt(abs(atan(_e23.sin_theta_o, _e23.cos_theta_o)), uniforms.beta_n);
+    float _e59 = tt_gaussian(_e23.phi, _e56.x, _e56.y);
+    float _e60 = (_e55 * _e59);
+    float _e61 = (1.0 / uniforms.eta);
+    float _e62 = (_e23.sin_theta_o * _e61);
+    float _e67 = (1.0 / sqrt(max((1.0 - (_e62 * _e62)), 0.0)));
+    FibrePath _e69 = fibre_path(0.6002789, _e23.cos_theta_o, _e61, _e67, uniforms.eta);
+    float _e72 = -(uniforms.sigma_a.x);
+    Attenuations _e75 = attenuations(_e69.fresnel, exp((_e72 * _e69.segment_length)));
+    float _e77 = -(uniforms.sigma_a.y);
+    Attenuations _e80 = attenuations(_e69.fresnel, exp((_e77 * _e69.segment_length)));
+    float _e82 = -(uniforms.sigma_a.z);
+    Attenuations _e85 = attenuations(_e69.fresnel, exp((_e82 * _e69.segment_length)));
+    float _e91 = gaussian_lobe(uniforms.width_trt, (_e28 - uniforms.shift_trt));
+    float _e99 = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((17.0 * cos(_e23.phi)) + -16.78)))));
+    FibrePath _e101 = fibre_path(0.71930504, _e23.cos_theta_o, _e61, _e67, uniforms.eta);
+    Attenuations _e106 = attenuations(_e101.fresnel, exp((_e72 * _e101.segment_length)));
+    Attenuations _e110 = attenuations(_e101.fresnel, exp((_e77 * _e101.segment_length)));
+    Attenuations _e114 = attenuations(_e101.fresnel, exp((_e82 * _e101.segment_length)));
+    return vec3(((_e53 + (_e60 * _e75.tt)) + (_e99 * _e106.trt)), ((_e53 + (_e60 * _e80.tt)) + (_e99 * _e110.trt)), ((_e53 + (_e60 * _e85.tt)) + (_e99 * _e114.trt)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-float[9] fibre_frame(vec3 tangent_in) {
-    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 1e-30));
+FibreFrame fibre_frame(vec3 tangent_in) {
+    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     float _e14 = (tangent_in.x * _e13);
     float _e15 = (tangent_in.y * _e13);
     float _e16 = (tangent_in.z * _e13);
@@ -147,20 +181,20 @@ float[9] fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return float[9](_e14, _e15, _e16, (1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-float[6] fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e12[9] = fibre_frame(tangent);
-    return float[6]((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
+    FibreFrame _e12 = fibre_frame(tangent);
+    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 vec3 hair_bcsdf_world(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e3[6] = fibre_local_directions(tangent, wi, wo);
-    vec3 _e12 = hair_bcsdf(vec3(_e3[0], _e3[1], _e3[2]), vec3(_e3[3], _e3[4], _e3[5]));
-    return _e12;
+    FibreLocalDirections _e3 = fibre_local_directions(tangent, wi, wo);
+    vec3 _e6 = hair_bcsdf(_e3.wi, _e3.wo);
+    return _e6;
 }
 
 void main() {

@@ -11,7 +11,46 @@ struct FrostbiteUniforms {
     trt_scale: f32,
 }
 
+struct FibreAngles {
+    sin_theta_i: f32,
+    cos_theta_i: f32,
+    sin_theta_o: f32,
+    cos_theta_o: f32,
+    phi: f32,
+}
+
+struct FibrePath {
+    gamma_o: f32,
+    gamma_t: f32,
+    segment_length: f32,
+    fresnel: f32,
+}
+
+struct Attenuations {
+    r: f32,
+    tt: f32,
+    trt: f32,
+    residual: f32,
+}
+
+struct FibreFrame {
+    tangent: vec3<f32>,
+    normal: vec3<f32>,
+    binormal: vec3<f32>,
+}
+
+struct FibreLocalDirections {
+    wi: vec3<f32>,
+    wo: vec3<f32>,
+}
+
 const uniforms: FrostbiteUniforms = FrostbiteUniforms(0.27830222f, 0.13915111f, 0.55660444f, 0.06979899f, -0.03490481f, -0.10467191f, 1.55f, vec3<f32>(0.5447f, 0.9061f, 1.781f), 0.3f, 1f);
+// sqrt(2 pi), the normalisation of the Gaussian
+const SQRT_TWO_PI: f32 = 2.5066283f;
+// pi
+const PI: f32 = 3.1415927f;
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const TINY: f32 = 0.000000000000000000000000000001f;
 
 // lut0_frostbite_tt_texels: 9 x 10 texels (theta_o in [0, 1.3962634] along x, beta_n in [0.1, 1] along y); x, y = a, b; rgba32float, read with textureLoad
 @group(1) @binding(0) 
@@ -39,16 +78,16 @@ fn lut0_frostbite_tt(theta_o: f32, beta_n: f32) -> vec4<f32> {
 }
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
-fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> array<f32, 5> {
+fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
     let _e38 = (((1f * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0f * ((wi_in.z * 0f) - (0f * wo_in.z)))) + (0f * ((0f * wo_in.y) - (wi_in.y * 0f))));
     let _e43 = (((0f * 0f) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return array<f32, 5>(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e38, select(1f, _e43, (0f < (abs(_e38) + abs(_e43))))));
+    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e38, select(1f, _e43, (0f < (abs(_e38) + abs(_e43))))));
 }
 
 // hairmath::lobe::gaussian::gaussian_lobe -- Marschner et al. 2003, eq. 6
 fn gaussian_lobe(beta: f32, x: f32) -> f32 {
     let _e2 = (x / beta);
-    return (exp(((-0.5f * _e2) * _e2)) / (beta * 2.5066283f));
+    return (exp(((-0.5f * _e2) * _e2)) / (beta * SQRT_TWO_PI));
 }
 
 // hairmath::fresnel::fresnel_schlick -- Schlick 1994, eq. 24
@@ -62,7 +101,7 @@ fn fresnel_schlick(cos_i: f32, eta: f32) -> f32 {
 
 // hairmath::models::frostbite::tt_gaussian -- Tafuri 2019, slide 19
 fn tt_gaussian(phi: f32, a: f32, b: f32) -> f32 {
-    let _e6 = (abs(phi) - 3.1415927f);
+    let _e6 = (abs(phi) - PI);
     return (a * exp((-(b) * (_e6 * _e6))));
 }
 
@@ -81,57 +120,57 @@ fn fresnel(cos_i_1: f32, eta_1: f32, inv_eta: f32) -> f32 {
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-fn fibre_path(h: f32, c0_: f32, c1_: f32, c2_: f32, eta_2: f32) -> array<f32, 4> {
+fn fibre_path(h: f32, c0_: f32, c1_: f32, c2_: f32, eta_2: f32) -> FibrePath {
     let _e8 = min(max(h, -(1f)), 1f);
     let _e11 = (((_e8 * c0_) * c1_) * c2_);
     let _e16 = sqrt(max((1f - (_e11 * _e11)), 0f));
     let _e20 = sqrt(max((1f - (_e8 * _e8)), 0f));
     let _e22 = fresnel((c0_ * _e20), eta_2, c1_);
-    return array<f32, 4>(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * c2_), _e22);
+    return FibrePath(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * c2_), _e22);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
-fn attenuations(fresnel_in: f32, transmittance: f32) -> array<f32, 4> {
+fn attenuations(fresnel_in: f32, transmittance: f32) -> Attenuations {
     let _e3 = (1f - fresnel_in);
     let _e5 = ((_e3 * _e3) * transmittance);
     let _e7 = ((_e5 * fresnel_in) * transmittance);
-    return array<f32, 4>(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1f - (fresnel_in * transmittance)), 0.000000000000000000000000000001f)));
+    return Attenuations(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1f - (fresnel_in * transmittance)), TINY)));
 }
 
 // hair_bcsdf: `hairmath eval --model frostbite-refit`, Frostbite 2019 with hairmath's refitted single offsets of the TT and TRT attenuations (h = 0.600 and 0.719), S(wi, wo)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
-    let _e36 = fibre_angles(wi, wo);
-    let _e41 = (_e36[0] + _e36[2]);
-    let _e55 = gaussian_lobe(uniforms.width_r, (_e41 - uniforms.shift_r));
-    let _e64 = fresnel_schlick(sqrt(min(max((0.5f + (0.5f * (((wi.x * wo.x) + (wi.y * wo.y)) + (wi.z * wo.z)))), 0f), 1f)), uniforms.eta);
-    let _e66 = (_e55 * ((0.25f * max(cos((0.5f * _e36[4])), 0f)) * _e64));
-    let _e68 = gaussian_lobe(uniforms.width_tt, (_e41 - uniforms.shift_tt));
-    let _e69 = lut0_frostbite_tt(abs(atan2(_e36[2], _e36[3])), uniforms.beta_n);
-    let _e72 = tt_gaussian(_e36[4], _e69.x, _e69.y);
-    let _e73 = (_e68 * _e72);
-    let _e74 = (1f / uniforms.eta);
-    let _e75 = (_e36[2] * _e74);
-    let _e80 = (1f / sqrt(max((1f - (_e75 * _e75)), 0f)));
-    let _e82 = fibre_path(0.6002789f, _e36[3], _e74, _e80, uniforms.eta);
-    let _e85 = -(uniforms.sigma_a.x);
-    let _e88 = attenuations(_e82[3], exp((_e85 * _e82[2])));
-    let _e90 = -(uniforms.sigma_a.y);
-    let _e93 = attenuations(_e82[3], exp((_e90 * _e82[2])));
-    let _e95 = -(uniforms.sigma_a.z);
-    let _e98 = attenuations(_e82[3], exp((_e95 * _e82[2])));
-    let _e104 = gaussian_lobe(uniforms.width_trt, (_e41 - uniforms.shift_trt));
-    let _e112 = (_e104 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((17f * cos(_e36[4])) + -16.78f)))));
-    let _e114 = fibre_path(0.71930504f, _e36[3], _e74, _e80, uniforms.eta);
-    let _e119 = attenuations(_e114[3], exp((_e85 * _e114[2])));
-    let _e123 = attenuations(_e114[3], exp((_e90 * _e114[2])));
-    let _e127 = attenuations(_e114[3], exp((_e95 * _e114[2])));
-    return vec3<f32>(((_e66 + (_e73 * _e88[1])) + (_e112 * _e119[2])), ((_e66 + (_e73 * _e93[1])) + (_e112 * _e123[2])), ((_e66 + (_e73 * _e98[1])) + (_e112 * _e127[2])));
+    let _e23 = fibre_angles(wi, wo);
+    let _e28 = (_e23.sin_theta_i + _e23.sin_theta_o);
+    let _e42 = gaussian_lobe(uniforms.width_r, (_e28 - uniforms.shift_r));
+    let _e51 = fresnel_schlick(sqrt(min(max((0.5f + (0.5f * (((wi.x * wo.x) + (wi.y * wo.y)) + (wi.z * wo.z)))), 0f), 1f)), uniforms.eta);
+    let _e53 = (_e42 * ((0.25f * max(cos((0.5f * _e23.phi)), 0f)) * _e51));
+    let _e55 = gaussian_lobe(uniforms.width_tt, (_e28 - uniforms.shift_tt));
+    let _e56 = lut0_frostbite_tt(abs(atan2(_e23.sin_theta_o, _e23.cos_theta_o)), uniforms.beta_n);
+    let _e59 = tt_gaussian(_e23.phi, _e56.x, _e56.y);
+    let _e60 = (_e55 * _e59);
+    let _e61 = (1f / uniforms.eta);
+    let _e62 = (_e23.sin_theta_o * _e61);
+    let _e67 = (1f / sqrt(max((1f - (_e62 * _e62)), 0f)));
+    let _e69 = fibre_path(0.6002789f, _e23.cos_theta_o, _e61, _e67, uniforms.eta);
+    let _e72 = -(uniforms.sigma_a.x);
+    let _e75 = attenuations(_e69.fresnel, exp((_e72 * _e69.segment_length)));
+    let _e77 = -(uniforms.sigma_a.y);
+    let _e80 = attenuations(_e69.fresnel, exp((_e77 * _e69.segment_length)));
+    let _e82 = -(uniforms.sigma_a.z);
+    let _e85 = attenuations(_e69.fresnel, exp((_e82 * _e69.segment_length)));
+    let _e91 = gaussian_lobe(uniforms.width_trt, (_e28 - uniforms.shift_trt));
+    let _e99 = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((17f * cos(_e23.phi)) + -16.78f)))));
+    let _e101 = fibre_path(0.71930504f, _e23.cos_theta_o, _e61, _e67, uniforms.eta);
+    let _e106 = attenuations(_e101.fresnel, exp((_e72 * _e101.segment_length)));
+    let _e110 = attenuations(_e101.fresnel, exp((_e77 * _e101.segment_length)));
+    let _e114 = attenuations(_e101.fresnel, exp((_e82 * _e101.segment_length)));
+    return vec3<f32>(((_e53 + (_e60 * _e75.tt)) + (_e99 * _e106.trt)), ((_e53 + (_e60 * _e80.tt)) + (_e99 * _e110.trt)), ((_e53 + (_e60 * _e85.tt)) + (_e99 * _e114.trt)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-fn fibre_frame(tangent_in: vec3<f32>) -> array<f32, 9> {
-    let _e13 = (1f / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 0.000000000000000000000000000001f));
+fn fibre_frame(tangent_in: vec3<f32>) -> FibreFrame {
+    let _e13 = (1f / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     let _e14 = (tangent_in.x * _e13);
     let _e15 = (tangent_in.y * _e13);
     let _e16 = (tangent_in.z * _e13);
@@ -139,19 +178,19 @@ fn fibre_frame(tangent_in: vec3<f32>) -> array<f32, 9> {
     let _e20 = select(1f, _e19, (_e16 < 0f));
     let _e22 = (_e19 / (_e20 + _e16));
     let _e24 = ((_e14 * _e15) * _e22);
-    return array<f32, 9>(_e14, _e15, _e16, (1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3<f32>(_e14, _e15, _e16), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> array<f32, 6> {
+fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> FibreLocalDirections {
     let _e12 = fibre_frame(tangent);
-    return array<f32, 6>((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+    return FibreLocalDirections(vec3<f32>((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3<f32>((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 fn hair_bcsdf_world(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e3 = fibre_local_directions(tangent, wi, wo);
-    let _e12 = hair_bcsdf(vec3<f32>(_e3[0], _e3[1], _e3[2]), vec3<f32>(_e3[3], _e3[4], _e3[5]));
-    return _e12;
+    let _e6 = hair_bcsdf(_e3.wi, _e3.wo);
+    return _e6;
 }
 

@@ -18,14 +18,34 @@ struct GerardUniforms {
     float k_trt;
     float min_cos2_theta_d;
 };
+struct FibreAngles {
+    float sin_theta_i;
+    float cos_theta_i;
+    float sin_theta_o;
+    float cos_theta_o;
+    float phi;
+};
+struct FibreFrame {
+    vec3 tangent;
+    vec3 normal;
+    vec3 binormal;
+};
+struct FibreLocalDirections {
+    vec3 wi;
+    vec3 wo;
+};
 const GerardUniforms uniforms = GerardUniforms(0.76984614, 0.8167546, 0.69702667, 1.0, 1.0, 1.0, 0.034906585, -0.017453292, -0.05235988, vec3(0.5447, 0.9061, 1.781), 4.0, 5.5, 1e-12);
+// 4 pi, the solid angle of the sphere
+const float FOUR_PI = 12.566371;
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const float TINY = 1e-30;
 
 // lut0_gerard_texels: 128 x 64 texels (phi in [0, 3.141592653589793] along x, theta_d in [0, 1.5707963267948966] along y); x, y, z = N_R, N_TT, N_TRT; rgba32float, read with textureLoad
 layout(binding = 2) uniform sampler2D _group_1_binding_0_cs;
 
-layout(std430, binding = 0) readonly buffer type_9_block_0Compute { float _group_0_binding_0_cs[]; };
+layout(std430, binding = 0) readonly buffer type_6_block_0Compute { float _group_0_binding_0_cs[]; };
 
-layout(std430, binding = 1) buffer type_9_block_1Compute { float _group_0_binding_1_cs[]; };
+layout(std430, binding = 1) buffer type_6_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
 // table 0 (gerard): 2 axes, 3 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into
@@ -50,40 +70,40 @@ vec4 lut0_gerard(float phi, float theta_d) {
 }
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
-float[5] fibre_angles(vec3 wi_in, vec3 wo_in) {
+FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
     float _e38 = (((1.0 * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0.0 * ((wi_in.z * 0.0) - (0.0 * wo_in.z)))) + (0.0 * ((0.0 * wo_in.y) - (wi_in.y * 0.0))));
     float _e43 = (((0.0 * 0.0) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return float[5](min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
+    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
 }
 
 // hair_bcsdf: `hairmath eval --model gerard`, Gerard's direct lighting (eq. 4-8): Henyey-Greenstein lobes, Marschner's N_p from a 128 x 64 table times e^(-k sigma_a), S(wi, wo)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
-    float _e41[5] = fibre_angles(wi, wo);
-    float _e47 = atan(_e41[0], _e41[1]);
-    float _e48 = atan(_e41[2], _e41[3]);
-    float _e51 = ((_e47 + _e48) * 0.5);
-    float _e53 = ((_e48 - _e47) * 0.5);
-    float _e54 = cos(_e53);
-    float _e57 = (_e41[1] / max((_e54 * _e54), uniforms.min_cos2_theta_d));
-    vec4 _e60 = lut0_gerard(abs(_e41[4]), abs(_e53));
-    float _e67 = (uniforms.g_r * uniforms.g_r);
-    float _e72 = ((1.0 + _e67) - ((2.0 * uniforms.g_r) * cos((_e51 - uniforms.alpha_r))));
-    float _e81 = (((((1.0 - _e67) / ((12.566371 * _e72) * sqrt(_e72))) * uniforms.lobe_scale_r) * _e60.x) * _e57);
-    float _e84 = (uniforms.g_tt * uniforms.g_tt);
-    float _e88 = ((1.0 + _e84) - ((2.0 * uniforms.g_tt) * cos((_e51 - uniforms.alpha_tt))));
-    float _e96 = (((((1.0 - _e84) / ((12.566371 * _e88) * sqrt(_e88))) * uniforms.lobe_scale_tt) * _e60.y) * _e57);
-    float _e99 = (uniforms.g_trt * uniforms.g_trt);
-    float _e103 = ((1.0 + _e99) - ((2.0 * uniforms.g_trt) * cos((_e51 - uniforms.alpha_trt))));
-    float _e111 = (((((1.0 - _e99) / ((12.566371 * _e103) * sqrt(_e103))) * uniforms.lobe_scale_trt) * _e60.z) * _e57);
-    float _e112 = -(uniforms.k_tt);
-    float _e122 = -(uniforms.k_trt);
-    return vec3(((_e81 + (_e96 * exp((_e112 * uniforms.sigma_a.x)))) + (_e111 * exp((_e122 * uniforms.sigma_a.x)))), ((_e81 + (_e96 * exp((_e112 * uniforms.sigma_a.y)))) + (_e111 * exp((_e122 * uniforms.sigma_a.y)))), ((_e81 + (_e96 * exp((_e112 * uniforms.sigma_a.z)))) + (_e111 * exp((_e122 * uniforms.sigma_a.z)))));
+    FibreAngles _e25 = fibre_angles(wi, wo);
+    float _e31 = atan(_e25.sin_theta_i, _e25.cos_theta_i);
+    float _e32 = atan(_e25.sin_theta_o, _e25.cos_theta_o);
+    float _e35 = ((_e31 + _e32) * 0.5);
+    float _e37 = ((_e32 - _e31) * 0.5);
+    float _e38 = cos(_e37);
+    float _e41 = (_e25.cos_theta_i / max((_e38 * _e38), uniforms.min_cos2_theta_d));
+    vec4 _e44 = lut0_gerard(abs(_e25.phi), abs(_e37));
+    float _e51 = (uniforms.g_r * uniforms.g_r);
+    float _e56 = ((1.0 + _e51) - ((2.0 * uniforms.g_r) * cos((_e35 - uniforms.alpha_r))));
+    float _e65 = (((((1.0 - _e51) / ((FOUR_PI * _e56) * sqrt(_e56))) * uniforms.lobe_scale_r) * _e44.x) * _e41);
+    float _e68 = (uniforms.g_tt * uniforms.g_tt);
+    float _e72 = ((1.0 + _e68) - ((2.0 * uniforms.g_tt) * cos((_e35 - uniforms.alpha_tt))));
+    float _e80 = (((((1.0 - _e68) / ((FOUR_PI * _e72) * sqrt(_e72))) * uniforms.lobe_scale_tt) * _e44.y) * _e41);
+    float _e83 = (uniforms.g_trt * uniforms.g_trt);
+    float _e87 = ((1.0 + _e83) - ((2.0 * uniforms.g_trt) * cos((_e35 - uniforms.alpha_trt))));
+    float _e95 = (((((1.0 - _e83) / ((FOUR_PI * _e87) * sqrt(_e87))) * uniforms.lobe_scale_trt) * _e44.z) * _e41);
+    float _e96 = -(uniforms.k_tt);
+    float _e106 = -(uniforms.k_trt);
+    return vec3(((_e65 + (_e80 * exp((_e96 * uniforms.sigma_a.x)))) + (_e95 * exp((_e106 * uniforms.sigma_a.x)))), ((_e65 + (_e80 * exp((_e96 * uniforms.sigma_a.y)))) + (_e95 * exp((_e106 * uniforms.sigma_a.y)))), ((_e65 + (_e80 * exp((_e96 * uniforms.sigma_a.z)))) + (_e95 * exp((_e106 * uniforms.sigma_a.z)))));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-float[9] fibre_frame(vec3 tangent_in) {
-    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 1e-30));
+FibreFrame fibre_frame(vec3 tangent_in) {
+    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     float _e14 = (tangent_in.x * _e13);
     float _e15 = (tangent_in.y * _e13);
     float _e16 = (tangent_in.z * _e13);
@@ -91,20 +111,20 @@ float[9] fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return float[9](_e14, _e15, _e16, (1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-float[6] fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e12[9] = fibre_frame(tangent);
-    return float[6]((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
+    FibreFrame _e12 = fibre_frame(tangent);
+    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 vec3 hair_bcsdf_world(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e3[6] = fibre_local_directions(tangent, wi, wo);
-    vec3 _e12 = hair_bcsdf(vec3(_e3[0], _e3[1], _e3[2]), vec3(_e3[3], _e3[4], _e3[5]));
-    return _e12;
+    FibreLocalDirections _e3 = fibre_local_directions(tangent, wi, wo);
+    vec3 _e6 = hair_bcsdf(_e3.wi, _e3.wo);
+    return _e6;
 }
 
 void main() {

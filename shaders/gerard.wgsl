@@ -14,7 +14,30 @@ struct GerardUniforms {
     min_cos2_theta_d: f32,
 }
 
+struct FibreAngles {
+    sin_theta_i: f32,
+    cos_theta_i: f32,
+    sin_theta_o: f32,
+    cos_theta_o: f32,
+    phi: f32,
+}
+
+struct FibreFrame {
+    tangent: vec3<f32>,
+    normal: vec3<f32>,
+    binormal: vec3<f32>,
+}
+
+struct FibreLocalDirections {
+    wi: vec3<f32>,
+    wo: vec3<f32>,
+}
+
 const uniforms: GerardUniforms = GerardUniforms(0.76984614f, 0.8167546f, 0.69702667f, 1f, 1f, 1f, 0.034906585f, -0.017453292f, -0.05235988f, vec3<f32>(0.5447f, 0.9061f, 1.781f), 4f, 5.5f, 0.000000000001f);
+// 4 pi, the solid angle of the sphere
+const FOUR_PI: f32 = 12.566371f;
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const TINY: f32 = 0.000000000000000000000000000001f;
 
 // lut0_gerard_texels: 128 x 64 texels (phi in [0, 3.141592653589793] along x, theta_d in [0, 1.5707963267948966] along y); x, y, z = N_R, N_TT, N_TRT; rgba32float, read with textureLoad
 @group(1) @binding(0) 
@@ -42,40 +65,40 @@ fn lut0_gerard(phi: f32, theta_d: f32) -> vec4<f32> {
 }
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
-fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> array<f32, 5> {
+fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
     let _e38 = (((1f * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0f * ((wi_in.z * 0f) - (0f * wo_in.z)))) + (0f * ((0f * wo_in.y) - (wi_in.y * 0f))));
     let _e43 = (((0f * 0f) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return array<f32, 5>(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e38, select(1f, _e43, (0f < (abs(_e38) + abs(_e43))))));
+    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e38, select(1f, _e43, (0f < (abs(_e38) + abs(_e43))))));
 }
 
 // hair_bcsdf: `hairmath eval --model gerard`, Gerard's direct lighting (eq. 4-8): Henyey-Greenstein lobes, Marschner's N_p from a 128 x 64 table times e^(-k sigma_a), S(wi, wo)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
-    let _e41 = fibre_angles(wi, wo);
-    let _e47 = atan2(_e41[0], _e41[1]);
-    let _e48 = atan2(_e41[2], _e41[3]);
-    let _e51 = ((_e47 + _e48) * 0.5f);
-    let _e53 = ((_e48 - _e47) * 0.5f);
-    let _e54 = cos(_e53);
-    let _e57 = (_e41[1] / max((_e54 * _e54), uniforms.min_cos2_theta_d));
-    let _e60 = lut0_gerard(abs(_e41[4]), abs(_e53));
-    let _e67 = (uniforms.g_r * uniforms.g_r);
-    let _e72 = ((1f + _e67) - ((2f * uniforms.g_r) * cos((_e51 - uniforms.alpha_r))));
-    let _e81 = (((((1f - _e67) / ((12.566371f * _e72) * sqrt(_e72))) * uniforms.lobe_scale_r) * _e60.x) * _e57);
-    let _e84 = (uniforms.g_tt * uniforms.g_tt);
-    let _e88 = ((1f + _e84) - ((2f * uniforms.g_tt) * cos((_e51 - uniforms.alpha_tt))));
-    let _e96 = (((((1f - _e84) / ((12.566371f * _e88) * sqrt(_e88))) * uniforms.lobe_scale_tt) * _e60.y) * _e57);
-    let _e99 = (uniforms.g_trt * uniforms.g_trt);
-    let _e103 = ((1f + _e99) - ((2f * uniforms.g_trt) * cos((_e51 - uniforms.alpha_trt))));
-    let _e111 = (((((1f - _e99) / ((12.566371f * _e103) * sqrt(_e103))) * uniforms.lobe_scale_trt) * _e60.z) * _e57);
-    let _e112 = -(uniforms.k_tt);
-    let _e122 = -(uniforms.k_trt);
-    return vec3<f32>(((_e81 + (_e96 * exp((_e112 * uniforms.sigma_a.x)))) + (_e111 * exp((_e122 * uniforms.sigma_a.x)))), ((_e81 + (_e96 * exp((_e112 * uniforms.sigma_a.y)))) + (_e111 * exp((_e122 * uniforms.sigma_a.y)))), ((_e81 + (_e96 * exp((_e112 * uniforms.sigma_a.z)))) + (_e111 * exp((_e122 * uniforms.sigma_a.z)))));
+    let _e25 = fibre_angles(wi, wo);
+    let _e31 = atan2(_e25.sin_theta_i, _e25.cos_theta_i);
+    let _e32 = atan2(_e25.sin_theta_o, _e25.cos_theta_o);
+    let _e35 = ((_e31 + _e32) * 0.5f);
+    let _e37 = ((_e32 - _e31) * 0.5f);
+    let _e38 = cos(_e37);
+    let _e41 = (_e25.cos_theta_i / max((_e38 * _e38), uniforms.min_cos2_theta_d));
+    let _e44 = lut0_gerard(abs(_e25.phi), abs(_e37));
+    let _e51 = (uniforms.g_r * uniforms.g_r);
+    let _e56 = ((1f + _e51) - ((2f * uniforms.g_r) * cos((_e35 - uniforms.alpha_r))));
+    let _e65 = (((((1f - _e51) / ((FOUR_PI * _e56) * sqrt(_e56))) * uniforms.lobe_scale_r) * _e44.x) * _e41);
+    let _e68 = (uniforms.g_tt * uniforms.g_tt);
+    let _e72 = ((1f + _e68) - ((2f * uniforms.g_tt) * cos((_e35 - uniforms.alpha_tt))));
+    let _e80 = (((((1f - _e68) / ((FOUR_PI * _e72) * sqrt(_e72))) * uniforms.lobe_scale_tt) * _e44.y) * _e41);
+    let _e83 = (uniforms.g_trt * uniforms.g_trt);
+    let _e87 = ((1f + _e83) - ((2f * uniforms.g_trt) * cos((_e35 - uniforms.alpha_trt))));
+    let _e95 = (((((1f - _e83) / ((FOUR_PI * _e87) * sqrt(_e87))) * uniforms.lobe_scale_trt) * _e44.z) * _e41);
+    let _e96 = -(uniforms.k_tt);
+    let _e106 = -(uniforms.k_trt);
+    return vec3<f32>(((_e65 + (_e80 * exp((_e96 * uniforms.sigma_a.x)))) + (_e95 * exp((_e106 * uniforms.sigma_a.x)))), ((_e65 + (_e80 * exp((_e96 * uniforms.sigma_a.y)))) + (_e95 * exp((_e106 * uniforms.sigma_a.y)))), ((_e65 + (_e80 * exp((_e96 * uniforms.sigma_a.z)))) + (_e95 * exp((_e106 * uniforms.sigma_a.z)))));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-fn fibre_frame(tangent_in: vec3<f32>) -> array<f32, 9> {
-    let _e13 = (1f / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 0.000000000000000000000000000001f));
+fn fibre_frame(tangent_in: vec3<f32>) -> FibreFrame {
+    let _e13 = (1f / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     let _e14 = (tangent_in.x * _e13);
     let _e15 = (tangent_in.y * _e13);
     let _e16 = (tangent_in.z * _e13);
@@ -83,19 +106,19 @@ fn fibre_frame(tangent_in: vec3<f32>) -> array<f32, 9> {
     let _e20 = select(1f, _e19, (_e16 < 0f));
     let _e22 = (_e19 / (_e20 + _e16));
     let _e24 = ((_e14 * _e15) * _e22);
-    return array<f32, 9>(_e14, _e15, _e16, (1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3<f32>(_e14, _e15, _e16), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> array<f32, 6> {
+fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> FibreLocalDirections {
     let _e12 = fibre_frame(tangent);
-    return array<f32, 6>((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+    return FibreLocalDirections(vec3<f32>((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3<f32>((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 fn hair_bcsdf_world(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e3 = fibre_local_directions(tangent, wi, wo);
-    let _e12 = hair_bcsdf(vec3<f32>(_e3[0], _e3[1], _e3[2]), vec3<f32>(_e3[3], _e3[4], _e3[5]));
-    return _e12;
+    let _e6 = hair_bcsdf(_e3.wi, _e3.wo);
+    return _e6;
 }
 

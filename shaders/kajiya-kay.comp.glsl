@@ -8,25 +8,36 @@ struct KajiyaKayUniforms {
     vec3 ks;
     float exponent;
 };
+struct FibreFrame {
+    vec3 tangent;
+    vec3 normal;
+    vec3 binormal;
+};
+struct FibreLocalDirections {
+    vec3 wi;
+    vec3 wo;
+};
 const KajiyaKayUniforms uniforms = KajiyaKayUniforms(vec3(0.031746723, 0.016240317, 0.0032422696), vec3(0.019221237, 0.017891414, 0.017399637), 11.818769);
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const float TINY = 1e-30;
 
-layout(std430, binding = 0) readonly buffer type_5_block_0Compute { float _group_0_binding_0_cs[]; };
+layout(std430, binding = 0) readonly buffer type_3_block_0Compute { float _group_0_binding_0_cs[]; };
 
-layout(std430, binding = 1) buffer type_5_block_1Compute { float _group_0_binding_1_cs[]; };
+layout(std430, binding = 1) buffer type_3_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
 // hair_bcsdf: `hairmath eval --model kajiya-kay`, Kajiya and Kay 1989 as the survey writes it: a diffuse k_d cos(theta_i) and one specular cone k_s cos^n(theta_i + theta_o), no cosine factor
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
-    float _e37 = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1.0);
-    float _e47 = ((_e37 * min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1.0)) - (min(max(wi.x, -1.0), 1.0) * min(max(wo.x, -1.0), 1.0)));
-    float _e57 = ((0.0 < _e47) ? exp((uniforms.exponent * log(max(_e47, 1e-30)))) : 0.0);
-    return vec3(((uniforms.kd.x * _e37) + (uniforms.ks.x * _e57)), ((uniforms.kd.y * _e37) + (uniforms.ks.y * _e57)), ((uniforms.kd.z * _e37) + (uniforms.ks.z * _e57)));
+    float _e27 = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1.0);
+    float _e37 = ((_e27 * min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1.0)) - (min(max(wi.x, -1.0), 1.0) * min(max(wo.x, -1.0), 1.0)));
+    float _e47 = ((0.0 < _e37) ? exp((uniforms.exponent * log(max(_e37, TINY)))) : 0.0);
+    return vec3(((uniforms.kd.x * _e27) + (uniforms.ks.x * _e47)), ((uniforms.kd.y * _e27) + (uniforms.ks.y * _e47)), ((uniforms.kd.z * _e27) + (uniforms.ks.z * _e47)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-float[9] fibre_frame(vec3 tangent_in) {
-    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 1e-30));
+FibreFrame fibre_frame(vec3 tangent_in) {
+    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     float _e14 = (tangent_in.x * _e13);
     float _e15 = (tangent_in.y * _e13);
     float _e16 = (tangent_in.z * _e13);
@@ -34,20 +45,20 @@ float[9] fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return float[9](_e14, _e15, _e16, (1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-float[6] fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e12[9] = fibre_frame(tangent);
-    return float[6]((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
+    FibreFrame _e12 = fibre_frame(tangent);
+    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 vec3 hair_bcsdf_world(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e3[6] = fibre_local_directions(tangent, wi, wo);
-    vec3 _e12 = hair_bcsdf(vec3(_e3[0], _e3[1], _e3[2]), vec3(_e3[3], _e3[4], _e3[5]));
-    return _e12;
+    FibreLocalDirections _e3 = fibre_local_directions(tangent, wi, wo);
+    vec3 _e6 = hair_bcsdf(_e3.wi, _e3.wo);
+    return _e6;
 }
 
 void main() {

@@ -10,17 +10,42 @@ struct KarisUniforms {
     vec3 sigma_a;
     vec3 log_color;
 };
+struct FibreFrame {
+    vec3 tangent;
+    vec3 normal;
+    vec3 binormal;
+};
+struct FibreLocalDirections {
+    vec3 wi;
+    vec3 wo;
+};
 const KarisUniforms uniforms = KarisUniforms(0.27830222, 0.13915111, 0.55660444, vec3(0.5447, 0.9061, 1.781), vec3(-4.3458734, -5.6051397, -7.8583317));
+// 1e-4, the regulariser of UE's cos phi = Lp.Vp rsqrt(|Lp|^2 |Vp|^2 + 1e-4)
+const float COS_PHI_EPSILON = 0.0001;
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const float TINY = 1e-30;
+// sin and cos of -2 Shift, the R lobe's tilt (HairShading)
+const float R_TILT_SIN_COS[2] = float[2](-0.06994285, 0.997551);
+// sqrt(2)
+const float SQRT_TWO = 1.4142135;
+// sqrt(2 pi), the normalisation of the Gaussian
+const float SQRT_TWO_PI = 2.5066283;
+// 1.55, the refractive index of UE's Hair_F
+const float ETA = 1.55;
+// UE's Shift, the cuticle tilt in radians: the TT lobe's shift (HairShading)
+const float SHIFT = 0.035;
+// 4 Shift, the TRT lobe's shift (HairShading)
+const float TRT_SHIFT = 0.14;
 
-layout(std430, binding = 0) readonly buffer type_5_block_0Compute { float _group_0_binding_0_cs[]; };
+layout(std430, binding = 0) readonly buffer type_4_block_0Compute { float _group_0_binding_0_cs[]; };
 
-layout(std430, binding = 1) buffer type_5_block_1Compute { float _group_0_binding_1_cs[]; };
+layout(std430, binding = 1) buffer type_4_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
 // hairmath::lobe::gaussian::gaussian_lobe -- Marschner et al. 2003, eq. 6
 float gaussian_lobe(float beta, float x) {
     float _e2 = (x / beta);
-    return (exp(((-0.5 * _e2) * _e2)) / (beta * 2.5066283));
+    return (exp(((-0.5 * _e2) * _e2)) / (beta * SQRT_TWO_PI));
 }
 
 // hairmath::fresnel::fresnel_schlick -- Schlick 1994, eq. 24
@@ -55,40 +80,40 @@ float d_karis_2_(float cos_phi_2) {
 // hair_bcsdf: `hairmath eval --model karis`, Karis 2016 as Unreal Engine 4.27's HairShading (R + TT + TRT) with UE's BaseColor (--color, inverted at beta_n = 0.3) and Roughness, S(wi, wo)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
-    float _e35 = -(1.0);
-    float _e37 = min(max(-(wi.x), _e35), 1.0);
-    float _e40 = min(max(-(wo.x), _e35), 1.0);
-    float _e44 = min(max(_e40, -1.0), 1.0);
-    float _e51 = min(max(_e37, -1.0), 1.0);
-    float _e73 = (((wi.y * wo.y) + (wi.z * wo.z)) / sqrt(((((wi.y * wi.y) + (wi.z * wi.z)) * ((wo.y * wo.y) + (wo.z * wo.z))) + 0.0001)));
-    float _e74 = (_e37 + _e40);
-    float _e77 = max(cos((0.5 * abs((atan(_e44, sqrt(max((1.0 - (_e44 * _e44)), 0.0))) - atan(_e51, sqrt(max((1.0 - (_e51 * _e51)), 0.0))))))), 1e-30);
-    float _e82 = sqrt(min(max((0.5 + (0.5 * _e73)), 0.0), 1.0));
-    float _e106 = gaussian_lobe(max((uniforms.width_r * (1.4142135 * _e82)), 1e-30), (_e74 - ((2.0 * -0.06994285) * (((0.997551 * _e82) * sqrt(max((1.0 - (_e40 * _e40)), 0.0))) + (-0.06994285 * _e40)))));
-    float _e115 = fresnel_schlick(sqrt(min(max((0.5 + (0.5 * (((wo.x * wi.x) + (wo.y * wi.y)) + (wo.z * wi.z)))), 0.0), 1.0)), 1.55);
-    float _e118 = max((_e106 * ((0.25 * _e82) * _e115)), 0.0);
-    float _e121 = gaussian_lobe(uniforms.width_tt, (_e74 - 0.035));
-    float _e122 = scaled_eta_prime_karis(_e77);
-    float _e123 = (_e77 / _e122);
-    float _e124 = h_tt_karis(_e123, _e73, _e82);
-    float _e131 = fresnel_schlick((_e77 * sqrt(min(max((1.0 - (_e124 * _e124)), 0.0), 1.0))), 1.55);
-    float _e132 = (1.0 - _e131);
-    float _e134 = d_karis(_e73);
-    float _e136 = ((_e121 * _e134) * (_e132 * _e132));
-    float _e137 = (_e124 * _e123);
-    float _e142 = (2.0 * abs((1.0 - ((_e137 * _e137) / _e77))));
-    float _e160 = gaussian_lobe(uniforms.width_trt, (_e74 - 0.14));
-    float _e162 = fresnel_schlick((_e77 * 0.5), 1.55);
-    float _e163 = (1.0 - _e162);
-    float _e166 = d_karis_2_(_e73);
-    float _e168 = ((_e160 * _e166) * ((_e163 * _e163) * _e162));
-    float _e170 = (0.8 / _e77);
-    return vec3(max(((_e118 + max((_e136 * exp((-(uniforms.sigma_a.x) * _e142))), 0.0)) + max((_e168 * exp((uniforms.log_color.x * _e170))), 0.0)), 0.0), max(((_e118 + max((_e136 * exp((-(uniforms.sigma_a.y) * _e142))), 0.0)) + max((_e168 * exp((uniforms.log_color.y * _e170))), 0.0)), 0.0), max(((_e118 + max((_e136 * exp((-(uniforms.sigma_a.z) * _e142))), 0.0)) + max((_e168 * exp((uniforms.log_color.z * _e170))), 0.0)), 0.0));
+    float _e23 = -(1.0);
+    float _e25 = min(max(-(wi.x), _e23), 1.0);
+    float _e28 = min(max(-(wo.x), _e23), 1.0);
+    float _e32 = min(max(_e28, -1.0), 1.0);
+    float _e39 = min(max(_e25, -1.0), 1.0);
+    float _e61 = (((wi.y * wo.y) + (wi.z * wo.z)) / sqrt(((((wi.y * wi.y) + (wi.z * wi.z)) * ((wo.y * wo.y) + (wo.z * wo.z))) + COS_PHI_EPSILON)));
+    float _e62 = (_e25 + _e28);
+    float _e65 = max(cos((0.5 * abs((atan(_e32, sqrt(max((1.0 - (_e32 * _e32)), 0.0))) - atan(_e39, sqrt(max((1.0 - (_e39 * _e39)), 0.0))))))), TINY);
+    float _e70 = sqrt(min(max((0.5 + (0.5 * _e61)), 0.0), 1.0));
+    float _e96 = gaussian_lobe(max((uniforms.width_r * (SQRT_TWO * _e70)), TINY), (_e62 - ((2.0 * R_TILT_SIN_COS[0]) * (((R_TILT_SIN_COS[1] * _e70) * sqrt(max((1.0 - (_e28 * _e28)), 0.0))) + (R_TILT_SIN_COS[0] * _e28)))));
+    float _e105 = fresnel_schlick(sqrt(min(max((0.5 + (0.5 * (((wo.x * wi.x) + (wo.y * wi.y)) + (wo.z * wi.z)))), 0.0), 1.0)), ETA);
+    float _e108 = max((_e96 * ((0.25 * _e70) * _e105)), 0.0);
+    float _e111 = gaussian_lobe(uniforms.width_tt, (_e62 - SHIFT));
+    float _e112 = scaled_eta_prime_karis(_e65);
+    float _e113 = (_e65 / _e112);
+    float _e114 = h_tt_karis(_e113, _e61, _e70);
+    float _e121 = fresnel_schlick((_e65 * sqrt(min(max((1.0 - (_e114 * _e114)), 0.0), 1.0))), ETA);
+    float _e122 = (1.0 - _e121);
+    float _e124 = d_karis(_e61);
+    float _e126 = ((_e111 * _e124) * (_e122 * _e122));
+    float _e127 = (_e114 * _e113);
+    float _e132 = (2.0 * abs((1.0 - ((_e127 * _e127) / _e65))));
+    float _e150 = gaussian_lobe(uniforms.width_trt, (_e62 - TRT_SHIFT));
+    float _e152 = fresnel_schlick((_e65 * 0.5), ETA);
+    float _e153 = (1.0 - _e152);
+    float _e156 = d_karis_2_(_e61);
+    float _e158 = ((_e150 * _e156) * ((_e153 * _e153) * _e152));
+    float _e160 = (0.8 / _e65);
+    return vec3(max(((_e108 + max((_e126 * exp((-(uniforms.sigma_a.x) * _e132))), 0.0)) + max((_e158 * exp((uniforms.log_color.x * _e160))), 0.0)), 0.0), max(((_e108 + max((_e126 * exp((-(uniforms.sigma_a.y) * _e132))), 0.0)) + max((_e158 * exp((uniforms.log_color.y * _e160))), 0.0)), 0.0), max(((_e108 + max((_e126 * exp((-(uniforms.sigma_a.z) * _e132))), 0.0)) + max((_e158 * exp((uniforms.log_color.z * _e160))), 0.0)), 0.0));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-float[9] fibre_frame(vec3 tangent_in) {
-    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 1e-30));
+FibreFrame fibre_frame(vec3 tangent_in) {
+    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     float _e14 = (tangent_in.x * _e13);
     float _e15 = (tangent_in.y * _e13);
     float _e16 = (tangent_in.z * _e13);
@@ -96,20 +121,20 @@ float[9] fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return float[9](_e14, _e15, _e16, (1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-float[6] fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e12[9] = fibre_frame(tangent);
-    return float[6]((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
+    FibreFrame _e12 = fibre_frame(tangent);
+    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 vec3 hair_bcsdf_world(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e3[6] = fibre_local_directions(tangent, wi, wo);
-    vec3 _e12 = hair_bcsdf(vec3(_e3[0], _e3[1], _e3[2]), vec3(_e3[3], _e3[4], _e3[5]));
-    return _e12;
+    FibreLocalDirections _e3 = fibre_local_directions(tangent, wi, wo);
+    vec3 _e6 = hair_bcsdf(_e3.wi, _e3.wo);
+    return _e6;
 }
 
 void main() {

@@ -6,7 +6,18 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 struct NguyenDonnellyUniforms {
     float min_cos2_theta_d;
 };
+struct FibreFrame {
+    vec3 tangent;
+    vec3 normal;
+    vec3 binormal;
+};
+struct FibreLocalDirections {
+    vec3 wi;
+    vec3 wo;
+};
 const NguyenDonnellyUniforms uniforms = NguyenDonnellyUniforms(1e-12);
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const float TINY = 1e-30;
 
 // lut0_nguyen_m_texels: 128 x 128 texels (sin_theta_i in [-1, 1] along x, sin_theta_o in [-1, 1] along y); x, y, z, w = M_R, M_TT, M_TRT, cos_theta_d; rgba32float, read with textureLoad
 layout(binding = 2) uniform sampler2D _group_1_binding_0_cs;
@@ -17,9 +28,9 @@ layout(binding = 3) uniform sampler2D _group_1_binding_1_cs;
 // lut1_nguyen_n_texels_b: 128 x 128 texels (cos_phi in [-1, 1] along x, cos_theta_d in [0, 1] along y); x, y, z = N_TRT_r, N_TRT_g, N_TRT_b; rgba32float, read with textureLoad
 layout(binding = 4) uniform sampler2D _group_1_binding_2_cs;
 
-layout(std430, binding = 0) readonly buffer type_9_block_0Compute { float _group_0_binding_0_cs[]; };
+layout(std430, binding = 0) readonly buffer type_7_block_0Compute { float _group_0_binding_0_cs[]; };
 
-layout(std430, binding = 1) buffer type_9_block_1Compute { float _group_0_binding_1_cs[]; };
+layout(std430, binding = 1) buffer type_7_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
 // table 0 (nguyen-m): 2 axes, 4 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into
@@ -97,8 +108,8 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-float[9] fibre_frame(vec3 tangent_in) {
-    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 1e-30));
+FibreFrame fibre_frame(vec3 tangent_in) {
+    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     float _e14 = (tangent_in.x * _e13);
     float _e15 = (tangent_in.y * _e13);
     float _e16 = (tangent_in.z * _e13);
@@ -106,20 +117,20 @@ float[9] fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return float[9](_e14, _e15, _e16, (1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-float[6] fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e12[9] = fibre_frame(tangent);
-    return float[6]((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
+    FibreFrame _e12 = fibre_frame(tangent);
+    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 vec3 hair_bcsdf_world(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e3[6] = fibre_local_directions(tangent, wi, wo);
-    vec3 _e12 = hair_bcsdf(vec3(_e3[0], _e3[1], _e3[2]), vec3(_e3[3], _e3[4], _e3[5]));
-    return _e12;
+    FibreLocalDirections _e3 = fibre_local_directions(tangent, wi, wo);
+    vec3 _e6 = hair_bcsdf(_e3.wi, _e3.wo);
+    return _e6;
 }
 
 void main() {

@@ -2,7 +2,20 @@ struct NguyenDonnellyUniforms {
     min_cos2_theta_d: f32,
 }
 
+struct FibreFrame {
+    tangent: vec3<f32>,
+    normal: vec3<f32>,
+    binormal: vec3<f32>,
+}
+
+struct FibreLocalDirections {
+    wi: vec3<f32>,
+    wo: vec3<f32>,
+}
+
 const uniforms: NguyenDonnellyUniforms = NguyenDonnellyUniforms(0.000000000001f);
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const TINY: f32 = 0.000000000000000000000000000001f;
 
 // lut0_nguyen_m_texels: 128 x 128 texels (sin_theta_i in [-1, 1] along x, sin_theta_o in [-1, 1] along y); x, y, z, w = M_R, M_TT, M_TRT, cos_theta_d; rgba32float, read with textureLoad
 @group(1) @binding(0) 
@@ -89,8 +102,8 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-fn fibre_frame(tangent_in: vec3<f32>) -> array<f32, 9> {
-    let _e13 = (1f / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 0.000000000000000000000000000001f));
+fn fibre_frame(tangent_in: vec3<f32>) -> FibreFrame {
+    let _e13 = (1f / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     let _e14 = (tangent_in.x * _e13);
     let _e15 = (tangent_in.y * _e13);
     let _e16 = (tangent_in.z * _e13);
@@ -98,19 +111,19 @@ fn fibre_frame(tangent_in: vec3<f32>) -> array<f32, 9> {
     let _e20 = select(1f, _e19, (_e16 < 0f));
     let _e22 = (_e19 / (_e20 + _e16));
     let _e24 = ((_e14 * _e15) * _e22);
-    return array<f32, 9>(_e14, _e15, _e16, (1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3<f32>(_e14, _e15, _e16), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> array<f32, 6> {
+fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> FibreLocalDirections {
     let _e12 = fibre_frame(tangent);
-    return array<f32, 6>((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+    return FibreLocalDirections(vec3<f32>((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3<f32>((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 fn hair_bcsdf_world(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e3 = fibre_local_directions(tangent, wi, wo);
-    let _e12 = hair_bcsdf(vec3<f32>(_e3[0], _e3[1], _e3[2]), vec3<f32>(_e3[3], _e3[4], _e3[5]));
-    return _e12;
+    let _e6 = hair_bcsdf(_e3.wi, _e3.wo);
+    return _e6;
 }
 

@@ -11,37 +11,50 @@ struct ScheuermannUniforms {
     noise_mask: f32,
 }
 
+struct FibreFrame {
+    tangent: vec3<f32>,
+    normal: vec3<f32>,
+    binormal: vec3<f32>,
+}
+
+struct FibreLocalDirections {
+    wi: vec3<f32>,
+    wo: vec3<f32>,
+}
+
 const uniforms: ScheuermannUniforms = ScheuermannUniforms(vec3<f32>(0.000098897275f, 0.000015974958f, 0.00000022135521f), vec3<f32>(0.027071713f, 0.027071713f, 0.027071713f), 23.637539f, 0.99939084f, -0.034899496f, vec3<f32>(0.0016160229f, 0.00045222277f, 0.000021840126f), 5.9093847f, 0.9975641f, 0.06975647f, 1f);
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const TINY: f32 = 0.000000000000000000000000000001f;
 
 // hair_bcsdf: `hairmath eval --model scheuermann`, Scheuermann 2004 (ATI) after the blog seed: two smoothstep(-1, 0, T.H) sin(T, H)^e lobes on shifted tangents, the second tinted and masked, and a scaled-and-biased Lambert diffuse
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
-    let _e57 = min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1f);
-    let _e58 = (0.000000000000000000000000000001f < _e57);
-    let _e60 = (1f / max(_e57, 0.000000000000000000000000000001f));
-    let _e62 = select(1f, (wo.y * _e60), _e58);
-    let _e64 = select(0f, (wo.z * _e60), _e58);
-    let _e73 = min(max((0.25f + (0.75f * ((wi.y * _e62) + (wi.z * _e64)))), 0f), 1f);
-    let _e74 = (wi.x + wo.x);
-    let _e75 = (wi.y + wo.y);
-    let _e76 = (wi.z + wo.z);
-    let _e84 = (1f / max(sqrt((((_e74 * _e74) + (_e75 * _e75)) + (_e76 * _e76))), 0.000000000000000000000000000001f));
-    let _e85 = (_e74 * _e84);
-    let _e89 = (((_e75 * _e62) + (_e76 * _e64)) * _e84);
-    let _e94 = min(max(((uniforms.tangent_primary * _e85) + (uniforms.normal_primary * _e89)), -1f), 1f);
-    let _e97 = min(max((_e94 + 1f), 0f), 1f);
-    let _e105 = (1f - (_e94 * _e94));
-    let _e112 = (((_e97 * _e97) * (3f - (2f * _e97))) * select(0f, exp((uniforms.half_exponent_primary * log(max(_e105, 0.000000000000000000000000000001f)))), (0f < _e105)));
-    let _e117 = min(max(((uniforms.tangent_secondary * _e85) + (uniforms.normal_secondary * _e89)), -1f), 1f);
-    let _e120 = min(max((_e117 + 1f), 0f), 1f);
-    let _e126 = (1f - (_e117 * _e117));
-    let _e140 = (uniforms.noise_mask * (((_e120 * _e120) * (3f - (2f * _e120))) * select(0f, exp((uniforms.half_exponent_secondary * log(max(_e126, 0.000000000000000000000000000001f)))), (0f < _e126))));
-    return vec3<f32>((((uniforms.kd.x * _e73) + (uniforms.ks_primary.x * _e112)) + (uniforms.ks_secondary.x * _e140)), (((uniforms.kd.y * _e73) + (uniforms.ks_primary.y * _e112)) + (uniforms.ks_secondary.y * _e140)), (((uniforms.kd.z * _e73) + (uniforms.ks_primary.z * _e112)) + (uniforms.ks_secondary.z * _e140)));
+    let _e36 = min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1f);
+    let _e37 = (TINY < _e36);
+    let _e39 = (1f / max(_e36, TINY));
+    let _e41 = select(1f, (wo.y * _e39), _e37);
+    let _e43 = select(0f, (wo.z * _e39), _e37);
+    let _e52 = min(max((0.25f + (0.75f * ((wi.y * _e41) + (wi.z * _e43)))), 0f), 1f);
+    let _e53 = (wi.x + wo.x);
+    let _e54 = (wi.y + wo.y);
+    let _e55 = (wi.z + wo.z);
+    let _e63 = (1f / max(sqrt((((_e53 * _e53) + (_e54 * _e54)) + (_e55 * _e55))), TINY));
+    let _e64 = (_e53 * _e63);
+    let _e68 = (((_e54 * _e41) + (_e55 * _e43)) * _e63);
+    let _e73 = min(max(((uniforms.tangent_primary * _e64) + (uniforms.normal_primary * _e68)), -1f), 1f);
+    let _e76 = min(max((_e73 + 1f), 0f), 1f);
+    let _e84 = (1f - (_e73 * _e73));
+    let _e91 = (((_e76 * _e76) * (3f - (2f * _e76))) * select(0f, exp((uniforms.half_exponent_primary * log(max(_e84, TINY)))), (0f < _e84)));
+    let _e96 = min(max(((uniforms.tangent_secondary * _e64) + (uniforms.normal_secondary * _e68)), -1f), 1f);
+    let _e99 = min(max((_e96 + 1f), 0f), 1f);
+    let _e105 = (1f - (_e96 * _e96));
+    let _e119 = (uniforms.noise_mask * (((_e99 * _e99) * (3f - (2f * _e99))) * select(0f, exp((uniforms.half_exponent_secondary * log(max(_e105, TINY)))), (0f < _e105))));
+    return vec3<f32>((((uniforms.kd.x * _e52) + (uniforms.ks_primary.x * _e91)) + (uniforms.ks_secondary.x * _e119)), (((uniforms.kd.y * _e52) + (uniforms.ks_primary.y * _e91)) + (uniforms.ks_secondary.y * _e119)), (((uniforms.kd.z * _e52) + (uniforms.ks_primary.z * _e91)) + (uniforms.ks_secondary.z * _e119)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-fn fibre_frame(tangent_in: vec3<f32>) -> array<f32, 9> {
-    let _e13 = (1f / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 0.000000000000000000000000000001f));
+fn fibre_frame(tangent_in: vec3<f32>) -> FibreFrame {
+    let _e13 = (1f / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     let _e14 = (tangent_in.x * _e13);
     let _e15 = (tangent_in.y * _e13);
     let _e16 = (tangent_in.z * _e13);
@@ -49,19 +62,19 @@ fn fibre_frame(tangent_in: vec3<f32>) -> array<f32, 9> {
     let _e20 = select(1f, _e19, (_e16 < 0f));
     let _e22 = (_e19 / (_e20 + _e16));
     let _e24 = ((_e14 * _e15) * _e22);
-    return array<f32, 9>(_e14, _e15, _e16, (1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3<f32>(_e14, _e15, _e16), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> array<f32, 6> {
+fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> FibreLocalDirections {
     let _e12 = fibre_frame(tangent);
-    return array<f32, 6>((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+    return FibreLocalDirections(vec3<f32>((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3<f32>((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 fn hair_bcsdf_world(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e3 = fibre_local_directions(tangent, wi, wo);
-    let _e12 = hair_bcsdf(vec3<f32>(_e3[0], _e3[1], _e3[2]), vec3<f32>(_e3[3], _e3[4], _e3[5]));
-    return _e12;
+    let _e6 = hair_bcsdf(_e3.wi, _e3.wo);
+    return _e6;
 }
 

@@ -14,32 +14,43 @@ struct TressFxUniforms {
     float cos_shift_secondary;
     float sin_shift_secondary;
 };
+struct FibreFrame {
+    vec3 tangent;
+    vec3 normal;
+    vec3 binormal;
+};
+struct FibreLocalDirections {
+    vec3 wi;
+    vec3 wo;
+};
 const TressFxUniforms uniforms = TressFxUniforms(vec3(0.031746723, 0.016240317, 0.0032422696), vec3(0.017417107, 0.017417107, 0.017417107), 11.818769, 0.9975641, 0.06975647, vec3(0.0010813378, 0.00030259817, 1.4613996e-5), 2.9546924, 0.99026805, 0.1391731);
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const float TINY = 1e-30;
 
-layout(std430, binding = 0) readonly buffer type_5_block_0Compute { float _group_0_binding_0_cs[]; };
+layout(std430, binding = 0) readonly buffer type_3_block_0Compute { float _group_0_binding_0_cs[]; };
 
-layout(std430, binding = 1) buffer type_5_block_1Compute { float _group_0_binding_1_cs[]; };
+layout(std430, binding = 1) buffer type_3_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
 // hair_bcsdf: `hairmath eval --model tressfx`, the two-cone Kajiya-Kay form of TressFX: a diffuse term, a primary cone shifted towards the root and a tinted secondary cone shifted towards the tip
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
-    float _e51 = min(max(wi.x, -1.0), 1.0);
-    float _e56 = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1.0);
-    float _e58 = min(max(wo.x, -1.0), 1.0);
-    float _e63 = min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1.0);
-    float _e66 = ((_e56 * _e63) - (_e51 * _e58));
-    float _e69 = ((_e51 * _e63) + (_e56 * _e58));
-    float _e72 = ((_e66 * uniforms.cos_shift_primary) + (_e69 * uniforms.sin_shift_primary));
-    float _e75 = ((_e66 * uniforms.cos_shift_secondary) - (_e69 * uniforms.sin_shift_secondary));
-    float _e85 = ((0.0 < _e72) ? exp((uniforms.exponent_primary * log(max(_e72, 1e-30)))) : 0.0);
-    float _e94 = ((0.0 < _e75) ? exp((uniforms.exponent_secondary * log(max(_e75, 1e-30)))) : 0.0);
-    return vec3((((uniforms.kd.x * _e56) + (uniforms.ks_primary.x * _e85)) + (uniforms.ks_secondary.x * _e94)), (((uniforms.kd.y * _e56) + (uniforms.ks_primary.y * _e85)) + (uniforms.ks_secondary.y * _e94)), (((uniforms.kd.z * _e56) + (uniforms.ks_primary.z * _e85)) + (uniforms.ks_secondary.z * _e94)));
+    float _e31 = min(max(wi.x, -1.0), 1.0);
+    float _e36 = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1.0);
+    float _e38 = min(max(wo.x, -1.0), 1.0);
+    float _e43 = min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1.0);
+    float _e46 = ((_e36 * _e43) - (_e31 * _e38));
+    float _e49 = ((_e31 * _e43) + (_e36 * _e38));
+    float _e52 = ((_e46 * uniforms.cos_shift_primary) + (_e49 * uniforms.sin_shift_primary));
+    float _e55 = ((_e46 * uniforms.cos_shift_secondary) - (_e49 * uniforms.sin_shift_secondary));
+    float _e65 = ((0.0 < _e52) ? exp((uniforms.exponent_primary * log(max(_e52, TINY)))) : 0.0);
+    float _e74 = ((0.0 < _e55) ? exp((uniforms.exponent_secondary * log(max(_e55, TINY)))) : 0.0);
+    return vec3((((uniforms.kd.x * _e36) + (uniforms.ks_primary.x * _e65)) + (uniforms.ks_secondary.x * _e74)), (((uniforms.kd.y * _e36) + (uniforms.ks_primary.y * _e65)) + (uniforms.ks_secondary.y * _e74)), (((uniforms.kd.z * _e36) + (uniforms.ks_primary.z * _e65)) + (uniforms.ks_secondary.z * _e74)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
-float[9] fibre_frame(vec3 tangent_in) {
-    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), 1e-30));
+FibreFrame fibre_frame(vec3 tangent_in) {
+    float _e13 = (1.0 / max(sqrt((((tangent_in.x * tangent_in.x) + (tangent_in.y * tangent_in.y)) + (tangent_in.z * tangent_in.z))), TINY));
     float _e14 = (tangent_in.x * _e13);
     float _e15 = (tangent_in.y * _e13);
     float _e16 = (tangent_in.z * _e13);
@@ -47,20 +58,20 @@ float[9] fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return float[9](_e14, _e15, _e16, (1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14), _e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15));
+    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
-float[6] fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e12[9] = fibre_frame(tangent);
-    return float[6]((((wi.x * _e12[0]) + (wi.y * _e12[1])) + (wi.z * _e12[2])), (((wi.x * _e12[3]) + (wi.y * _e12[4])) + (wi.z * _e12[5])), (((wi.x * _e12[6]) + (wi.y * _e12[7])) + (wi.z * _e12[8])), (((wo.x * _e12[0]) + (wo.y * _e12[1])) + (wo.z * _e12[2])), (((wo.x * _e12[3]) + (wo.y * _e12[4])) + (wo.z * _e12[5])), (((wo.x * _e12[6]) + (wo.y * _e12[7])) + (wo.z * _e12[8])));
+FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
+    FibreFrame _e12 = fibre_frame(tangent);
+    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions
 vec3 hair_bcsdf_world(vec3 tangent, vec3 wi, vec3 wo) {
-    float _e3[6] = fibre_local_directions(tangent, wi, wo);
-    vec3 _e12 = hair_bcsdf(vec3(_e3[0], _e3[1], _e3[2]), vec3(_e3[3], _e3[4], _e3[5]));
-    return _e12;
+    FibreLocalDirections _e3 = fibre_local_directions(tangent, wi, wo);
+    vec3 _e6 = hair_bcsdf(_e3.wi, _e3.wo);
+    return _e6;
 }
 
 void main() {

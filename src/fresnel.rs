@@ -1,7 +1,7 @@
 //! Fresnel reflectance of a dielectric interface, and the Bravais virtual indices that reduce
 //! refraction by an inclined ray to refraction in the fibre's normal plane.
 
-use crate::real::{safe_sqrt, Real, ShaderFunction};
+use crate::real::{safe_sqrt, Real, ShaderFunction, TINY};
 
 /// Unpolarised Fresnel reflectance of light arriving from outside a dielectric of relative
 /// index `eta` at an angle whose cosine to the normal is `cos_i` (Born and Wolf, section 1.5;
@@ -78,7 +78,7 @@ pub fn fresnel_schlick<R: Real>(cos_i: R, eta: R) -> R {
 /// Gerard (Fast Real-Time Shading for Polygonal Hair, eq. 8) prints `sqrt((1.55^2 - cos^2 theta_d + 1) / cos theta_d)`, which is not
 /// this expression (README, errata).
 pub fn bravais_eta_perpendicular<R: Real>(eta: R, sin_theta: R) -> R {
-    let cos_theta = safe_sqrt(R::c(1.0) - sin_theta * sin_theta).max(R::c(1e-30));
+    let cos_theta = safe_sqrt(R::c(1.0) - sin_theta * sin_theta).max(TINY.get());
     safe_sqrt(eta * eta - sin_theta * sin_theta) / cos_theta
 }
 

@@ -8,7 +8,7 @@
 //! to [-pi, pi] (Marschner 2003, section 2).
 
 use crate::error::ParamError;
-use crate::real::{Real, ShaderFunction};
+use crate::real::{Real, ShaderFunction, TINY};
 
 /// A 3-vector of any [`Real`] (glam is used at the API boundary; generic code needs its own).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -154,7 +154,7 @@ pub fn local_fibre_angles<R: Real>(wi: V3<R>, wo: V3<R>) -> FibreAngles<R> {
     const FUNCTION: ShaderFunction = crate::shader_function!(
         fibre_angles,
         "the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane",
-        [wi: vec3, wo: vec3]
+        [wi: vec3, wo: vec3] -> {sin_theta_i, cos_theta_i, sin_theta_o, cos_theta_o, phi}
     );
     let args = [wi.x, wi.y, wi.z, wo.x, wo.y, wo.z];
     let [sin_theta_i, cos_theta_i, sin_theta_o, cos_theta_o, phi] =
@@ -240,11 +240,11 @@ pub fn fibre_frame<R: Real>(tangent: V3<R>) -> [V3<R>; 3] {
     const FUNCTION: ShaderFunction = crate::shader_function!(
         fibre_frame,
         "Duff et al. 2017, listing 3",
-        [tangent: vec3]
+        [tangent: vec3] -> {tangent: vec3, normal: vec3, binormal: vec3}
     );
     let args = [tangent.x, tangent.y, tangent.z];
     let frame = R::call(&FUNCTION, args, |[x, y, z]| {
-        let length = (x * x + y * y + z * z).sqrt().max(R::c(1e-30));
+        let length = (x * x + y * y + z * z).sqrt().max(TINY.get());
         let t = V3::new(x, y, z).scale(R::c(1.0) / length);
         let one = R::c(1.0);
         let s = R::select(t.z.lt(R::c(0.0)), -one, one);
@@ -266,15 +266,15 @@ pub fn local_directions<R: Real>(tangent: V3<R>, wi: V3<R>, wo: V3<R>) -> [V3<R>
 }
 
 /// [`local_directions`] traced as the shader function `fibre_local_directions(tangent:
-/// vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> array<f32, 6>` (local wi, then local wo), the
+/// vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> FibreLocalDirections` (a struct of the local `wi` and `wo`), the
 /// frame of a world-space shader's `hair_bcsdf_world`.
 pub fn trace_local_directions() -> crate::real::Graph {
-    use crate::real::{trace_with, ArgType, Parameter, ResultType, Signature};
+    use crate::real::{trace_with, ArgType, Parameter, ResultType, Shape, Signature};
     let signature = Signature {
         parameters: ["tangent", "wi", "wo"]
             .map(|name| Parameter::argument(name, ArgType::Vec3))
             .to_vec(),
-        result: ResultType::Scalars,
+        result: ResultType::Fields(&[("wi", Shape::Vec3), ("wo", Shape::Vec3)]),
     };
     trace_with(signature, |x| {
         let v = |k: usize| V3::new(x[k], x[k + 1], x[k + 2]);

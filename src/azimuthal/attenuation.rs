@@ -1,6 +1,6 @@
 use super::path::{entry, Refraction};
 use crate::absorption::PathLength;
-use crate::real::{Real, ShaderFunction};
+use crate::real::{Real, ShaderFunction, TINY};
 
 /// Number of lobes: R, TT, TRT and the residual (p >= 3).
 pub const LOBES: usize = 4;
@@ -18,14 +18,14 @@ pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES] {
     const FUNCTION: ShaderFunction = crate::shader_function!(
         attenuations,
         "Chiang et al. 2016, eqs. 3 and 6",
-        [fresnel, transmittance]
+        [fresnel, transmittance] -> {r, tt, trt, residual}
     );
     R::call(&FUNCTION, [f, t], |[f, t]| {
         let one = R::c(1.0);
         let a0 = f;
         let a1 = (one - f).sqr() * t;
         let a2 = a1 * f * t;
-        let a3 = a2 * f * t / (one - f * t).max(R::c(1e-30));
+        let a3 = a2 * f * t / (one - f * t).max(TINY.get());
         [a0, a1, a2, a3]
     })
 }

@@ -1,4 +1,4 @@
-use crate::real::{pi, Real, ShaderLoop};
+use crate::real::{pi, Real, ShaderLoop, Shape};
 
 /// `(e, (1 + e)^2)` with `e = e^(-|x| / s)`, from `inv_scale = 1 / s`: the logistic density
 /// is `e / (s (1 + e)^2)`. Written with `|x|` so the exponential never overflows.
@@ -121,7 +121,7 @@ pub fn wrapped_gaussian<R: Real>(x: R, beta: R) -> R {
         name: "wrapped_gaussian_image",
         array: "WRAPPED_GAUSSIAN_SHIFTS",
         fields: &["shift"],
-        state: &["sum"],
+        state: &[("sum", Shape::Scalar)],
         source: "hairmath::azimuthal::wrapped_gaussian",
         equation: "d'Eon et al. 2011, eq. 11",
     };

@@ -75,7 +75,7 @@ impl<R: Real> Refraction<R> {
         const FUNCTION: ShaderFunction = crate::shader_function!(
             fibre_path,
             "Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)",
-            [h]
+            [h] -> {gamma_o, gamma_t, segment_length, fresnel}
         );
         let [gamma_o, gamma_t, segment_length, fresnel] = R::call(&FUNCTION, [h], |[h]| {
             let one = R::c(1.0);

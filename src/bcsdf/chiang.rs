@@ -39,7 +39,7 @@ use crate::geometry::{
 };
 use crate::lobe::{deon_lobe_sample_cos_theta, DeonLobe};
 use crate::params::HairParams;
-use crate::real::{pi, powi, safe_sqrt, wrap_angle, Real, ShaderFunction};
+use crate::real::{pi, powi, safe_sqrt, wrap_angle, Real, ShaderFunction, INV_TWO_PI};
 
 /// The names of the four lobes, in the order of every per-lobe array of the Chiang models.
 pub const CHIANG_LOBES: [&str; LOBES] = ["R", "TT", "TRT", "residual"];
@@ -448,10 +448,10 @@ impl<R: Real, O> ChiangHair<R, O> {
         const DISTRIBUTIONS: ShaderFunction = crate::shader_function!(
             trimmed_logistics,
             "Chiang et al. 2016, eq. 13",
-            [dphi_r, dphi_tt, dphi_trt]
+            [dphi_r, dphi_tt, dphi_trt] -> {r, tt, trt}
         );
         let [n0, n1, n2] = R::call(&DISTRIBUTIONS, dphi, |dphi| self.logistic().densities(dphi));
-        let n = [n0, n1, n2, R::c(0.5 * core::f64::consts::FRAC_1_PI)];
+        let n = [n0, n1, n2, INV_TWO_PI.get()];
         let wn = if WITH_PDF {
             let w = lobe_weights(&a);
             core::array::from_fn(|p| w[p] * n[p])

@@ -38,7 +38,7 @@ use crate::error::ParamError;
 use crate::geometry::V3;
 use crate::params::HairParams;
 use crate::quadrature::{adaptive, gauss_legendre};
-use crate::real::{safe_asin, wrap_angle, Real, ShaderLoop};
+use crate::real::{safe_asin, wrap_angle, Real, ShaderLoop, Shape};
 
 /// Fixed quadrature nodes over the offset: (h_k, P_k) with P_k >= 0 summing to 1.
 #[derive(Clone, Debug, PartialEq)]
@@ -119,23 +119,15 @@ impl<R: Real> OffsetNodes<R> {
 
 /// The state of the far field's loop over nodes with the lobe-choice weights of sampling:
 /// `N_p A_p` per lobe and channel, then `w_p N_p` per lobe.
-const NODE_SUMS: [&str; 16] = [
-    "r_red",
-    "r_green",
-    "r_blue",
-    "tt_red",
-    "tt_green",
-    "tt_blue",
-    "trt_red",
-    "trt_green",
-    "trt_blue",
-    "residual_red",
-    "residual_green",
-    "residual_blue",
-    "w_r",
-    "w_tt",
-    "w_trt",
-    "w_residual",
+const NODE_SUMS: [(&str, Shape); 8] = [
+    ("r", Shape::Vec3),
+    ("tt", Shape::Vec3),
+    ("trt", Shape::Vec3),
+    ("residual", Shape::Vec3),
+    ("w_r", Shape::Scalar),
+    ("w_tt", Shape::Scalar),
+    ("w_trt", Shape::Scalar),
+    ("w_residual", Shape::Scalar),
 ];
 
 /// The loop of the fixed-node far field over its nodes (h_k, P_k): `N_p A_p += P_k (N_p A_p)(h_k)`.
@@ -143,7 +135,7 @@ const NODES: ShaderLoop = ShaderLoop {
     name: "far_field_node",
     array: "FAR_FIELD_OFFSETS",
     fields: &["h", "weight"],
-    state: NODE_SUMS.split_at(12).0,
+    state: NODE_SUMS.split_at(4).0,
     source: "hairmath::bcsdf::far_field::OffsetNodes::azimuthal",
     equation: "Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature",
 };

@@ -303,6 +303,7 @@ impl OpCounts {
                 | Node::Global(_)
                 | Node::Result { .. }
                 | Node::Const(_)
+                | Node::Named { .. }
                 | Node::And(..)
                 | Node::Or(..)
                 | Node::Not(_)

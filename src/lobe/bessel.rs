@@ -13,7 +13,7 @@
 //!   < 1.9e-7 on sqrt(x) e^-x I0(x) >= 0.3989), so relative error below 4.8e-7; evaluated in
 //!   f32 the rounding of the logarithms keeps the total below 1e-6 (both measured by the tests).
 
-use crate::real::{horner, Real};
+use crate::real::{horner, horner_named, NamedConstant, Real};
 
 const SERIES_END: f64 = 20.0;
 const SERIES_TERMS: usize = 42;
@@ -54,7 +54,7 @@ pub fn i0e_split<R: Real>(x: R) -> (R, R) {
     } else {
         polynomials_single(x)
     };
-    let is_near = x.lt(R::c(switch));
+    let is_near = x.lt(switch);
     (
         R::select(is_near, near, far),
         R::select(is_near, -x, R::c(0.0)),
@@ -64,26 +64,27 @@ pub fn i0e_split<R: Real>(x: R) -> (R, R) {
 /// (switch point, I0 by its power series, sqrt(2 pi x) e^-x I0 / sqrt(2 pi x) by the asymptotic
 /// series), each evaluated on its side of the switch point.
 #[inline(always)]
-fn series_double<R: Real>(x: R) -> (f64, R, R) {
+fn series_double<R: Real>(x: R) -> (R, R, R) {
     let small = x.min(R::c(SERIES_END));
     let large = x.max(R::c(SERIES_END));
     let near = horner(small * small * R::c(0.25), &SERIES);
     let far = horner(R::c(0.125) / large, &ASYMPTOTIC)
         / (R::c(2.0 * core::f64::consts::PI) * large).sqrt();
-    (SERIES_END, near, far)
+    (R::c(SERIES_END), near, far)
 }
 
 /// The same parts from the polynomial fits of Abramowitz and Stegun 9.8.1 and 9.8.2.
 #[inline(always)]
-fn polynomials_single<R: Real>(x: R) -> (f64, R, R) {
-    let small = x.min(R::c(3.75));
-    let large = x.max(R::c(3.75));
-    let t = small * R::c(1.0 / 3.75);
-    let near = horner(t * t, &AS_9_8_1);
+fn polynomials_single<R: Real>(x: R) -> (R, R, R) {
+    let switch = AS_9_8_SWITCH.get::<R>();
+    let small = x.min(switch);
+    let large = x.max(switch);
+    let t = small * AS_9_8_INV_SWITCH.get::<R>();
+    let near = horner_named(t * t, &AS_9_8_1);
     // One division: 3.75 / x and 1 / sqrt(x) both from 1 / x.
     let inv = R::c(1.0) / large;
-    let far = horner(R::c(3.75) * inv, &AS_9_8_2) * inv.sqrt();
-    (3.75, near, far)
+    let far = horner_named(switch * inv, &AS_9_8_2) * inv.sqrt();
+    (switch, near, far)
 }
 
 /// `ln(I0(x) e^-x)` for `x >= 0` (negative arguments are treated as 0).
@@ -102,22 +103,42 @@ pub fn i0<R: Real>(x: R) -> R {
     log_i0(x.abs()).exp()
 }
 
+/// The switch point 3.75 between Abramowitz and Stegun 9.8.1 and 9.8.2.
+static AS_9_8_SWITCH: NamedConstant = NamedConstant {
+    name: "BESSEL_I0_SWITCH",
+    meaning: "3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2",
+    values: &[3.75],
+};
+/// `1 / 3.75`.
+static AS_9_8_INV_SWITCH: NamedConstant = NamedConstant {
+    name: "BESSEL_I0_INV_SWITCH",
+    meaning: "1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1",
+    values: &[1.0 / 3.75],
+};
 /// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75.
-const AS_9_8_1: [f64; 7] = [
-    1.0, 3.5156229, 3.0899424, 1.2067492, 0.2659732, 0.0360768, 0.0045813,
-];
+static AS_9_8_1: NamedConstant = NamedConstant {
+    name: "BESSEL_I0_NEAR",
+    meaning: "Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75",
+    values: &[
+        1.0, 3.5156229, 3.0899424, 1.2067492, 0.2659732, 0.0360768, 0.0045813,
+    ],
+};
 /// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75.
-const AS_9_8_2: [f64; 9] = [
-    0.39894228,
-    0.01328592,
-    0.00225319,
-    -0.00157565,
-    0.00916281,
-    -0.02057706,
-    0.02635537,
-    -0.01647633,
-    0.00392377,
-];
+static AS_9_8_2: NamedConstant = NamedConstant {
+    name: "BESSEL_I0_FAR",
+    meaning: "Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75",
+    values: &[
+        0.39894228,
+        0.01328592,
+        0.00225319,
+        -0.00157565,
+        0.00916281,
+        -0.02057706,
+        0.02635537,
+        -0.01647633,
+        0.00392377,
+    ],
+};
 
 #[cfg(test)]
 mod tests {

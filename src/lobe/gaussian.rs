@@ -1,4 +1,4 @@
-use crate::real::{Real, ShaderFunction};
+use crate::real::{Real, ShaderFunction, SQRT_TWO_PI};
 
 /// Marschner et al. 2003's longitudinal lobe: the unit-area Gaussian
 /// `g(beta, x) = exp(-x^2 / (2 beta^2)) / (beta sqrt(2 pi))` of standard deviation `beta`,
@@ -10,6 +10,6 @@ pub fn gaussian_lobe<R: Real>(beta: R, x: R) -> R {
         crate::shader_function!(gaussian_lobe, "Marschner et al. 2003, eq. 6", [beta, x]);
     R::call(&FUNCTION, [beta, x], |[beta, x]| {
         let z = x / beta;
-        [(R::c(-0.5) * z * z).exp() / (beta * R::c((2.0 * core::f64::consts::PI).sqrt()))]
+        [(R::c(-0.5) * z * z).exp() / (beta * SQRT_TWO_PI.get::<R>())]
     })[0]
 }

@@ -1,5 +1,5 @@
 use crate::error::ParamError;
-use crate::real::{Real, ShaderFunction};
+use crate::real::{Real, ShaderFunction, FOUR_PI};
 
 /// The Henyey-Greenstein function exactly as Gerard prints it (his eq. 6):
 /// `G = (1 / 4 pi) (1 - g^2) / (1 + g^2 - 2 g cos theta)^(3/2)`.
@@ -11,7 +11,7 @@ use crate::real::{Real, ShaderFunction};
 /// Requires `|g| < 1`.
 pub fn hg_gerard_printed<R: Real>(g: R, cos_theta: R) -> R {
     let d = R::c(1.0) + g * g - R::c(2.0) * g * cos_theta;
-    (R::c(1.0) - g * g) / (R::c(4.0 * core::f64::consts::PI) * d * d.sqrt())
+    (R::c(1.0) - g * g) / (FOUR_PI.get::<R>() * d * d.sqrt())
 }
 
 /// Henyey-Greenstein as a longitudinal lobe in one angle, normalised to unit integral over

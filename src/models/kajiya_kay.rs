@@ -113,7 +113,7 @@ use crate::error::ParamError;
 use crate::geometry::{local_sin_cos_theta, V3};
 use crate::params::HairParams;
 use crate::quadrature::{adaptive, gauss_legendre, integrate};
-use crate::real::{wrap_angle, Real};
+use crate::real::{wrap_angle, Real, TINY};
 use core::f64::consts::{FRAC_PI_2, PI};
 
 /// The lobes of [`KajiyaKay`], in the order of [`Bcsdf::eval_lobes`].
@@ -128,14 +128,12 @@ pub(crate) const MAX_WEIGHT: f64 = 1e6;
 /// See [`MAX_WEIGHT`].
 pub(crate) const MAX_EXPONENT: f64 = 1e6;
 
-/// The smallest positive base [`positive_power`] takes a logarithm of (finite in `f32`).
-const TINY: f64 = 1e-30;
-
 /// `max(base, 0)^exponent` for `exponent > 0`, as `exp(exponent ln base)`: exactly 0 for
-/// `base <= 0`, 1 for `base = 1`, and never `ln 0` (both arms are safe to evaluate).
+/// `base <= 0`, 1 for `base = 1`, and never `ln 0` (the logarithm's argument is floored at
+/// [`TINY`], finite in `f32`; both arms are safe to evaluate).
 #[inline(always)]
 pub(crate) fn positive_power<R: Real>(base: R, exponent: R) -> R {
-    let powered = (exponent * base.max(R::c(TINY)).ln()).exp();
+    let powered = (exponent * base.max(TINY.get()).ln()).exp();
     R::select(R::c(0.0).lt(base), powered, R::c(0.0))
 }
 

@@ -121,7 +121,7 @@ use crate::error::ParamError;
 use crate::geometry::local_sin_cos_theta;
 use crate::params::HairParams;
 use crate::quadrature::adaptive;
-use crate::real::Real;
+use crate::real::{Real, TINY};
 use core::f64::consts::PI;
 
 /// The lobes of [`Scheuermann`], in the order of [`Bcsdf::eval_lobes`].
@@ -135,9 +135,6 @@ const DIFFUSE_BIAS: f64 = 0.25;
 
 /// The albedo of the diffuse term of unit weight, `4 pi / 3` (module docs).
 const DIFFUSE_ALBEDO: f64 = 4.0 * PI / 3.0;
-
-/// Below this length a direction's projection across the fibre, and `|wi + wo|`, count as zero.
-const TINY: f64 = 1e-30;
 
 crate::uniform_block! {
     /// The uniforms of [`Scheuermann`]. Each shifted tangent is `t = a u + b N` with
@@ -292,7 +289,8 @@ impl<R: Real> Scheuermann<R> {
     fn terms(&self, query: &Query<R>) -> [[R; 3]; 3] {
         let u = &self.uniforms;
         let (wi, wo) = (query.wi, query.wo);
-        let (zero, one, tiny) = (R::c(0.0), R::c(1.0), R::c(TINY));
+        // Below `tiny` a direction's projection across the fibre, and `|wi + wo|`, count as 0.
+        let (zero, one, tiny) = (R::c(0.0), R::c(1.0), TINY.get::<R>());
         // The normal: wo's direction across the fibre (+Y where wo runs along it).
         let (_, cos_o) = local_sin_cos_theta(wo);
         let defined = tiny.lt(cos_o);

@@ -126,26 +126,44 @@ use crate::error::ParamError;
 use crate::fresnel::fresnel_schlick;
 use crate::lobe::gaussian_lobe;
 use crate::params::{AzimuthalRoughness, HairParams, LongitudinalRoughness};
-use crate::real::{horner, safe_asin, safe_sqrt, Real};
+use crate::real::{horner, safe_asin, safe_sqrt, NamedConstant, Real, SQRT_2, TINY};
 
 /// The lobes of the Unreal models, in the order of [`Bcsdf::eval_lobes`].
 pub const KARIS_LOBES: [&str; 3] = ["R", "TT", "TRT"];
 
 /// UE's `Shift`, the cuticle tilt in radians (`HairShading`): R is shifted by `-2 Shift`, TT
-/// by `Shift`, TRT by `4 Shift`.
-const SHIFT: f64 = 0.035;
+/// by `Shift`, TRT by `4 Shift` ([`TRT_SHIFT`]).
+static SHIFT: NamedConstant = NamedConstant {
+    name: "SHIFT",
+    meaning: "UE's Shift, the cuticle tilt in radians: the TT lobe's shift (HairShading)",
+    values: &[0.035],
+};
+/// `4 Shift`, the TRT lobe's shift.
+static TRT_SHIFT: NamedConstant = NamedConstant {
+    name: "TRT_SHIFT",
+    meaning: "4 Shift, the TRT lobe's shift (HairShading)",
+    values: &[4.0 * 0.035],
+};
+/// `sin` and `cos` of the R lobe's tilt `-2 Shift` (the tests check them against `f64`).
+static R_TILT_SIN_COS: NamedConstant = NamedConstant {
+    name: "R_TILT_SIN_COS",
+    meaning: "sin and cos of -2 Shift, the R lobe's tilt (HairShading)",
+    values: &[-0.06994284733753277, 0.9975510002532796],
+};
 /// The refractive index of `Hair_F` (Schlick's F0 = ((1 - 1.55) / (1 + 1.55))^2).
-const ETA: f64 = 1.55;
+static ETA: NamedConstant = NamedConstant {
+    name: "ETA",
+    meaning: "1.55, the refractive index of UE's Hair_F",
+    values: &[1.55],
+};
 /// UE's lower clamp of the Roughness, `1/255`.
 const MIN_ROUGHNESS: f64 = 1.0 / 255.0;
 /// The regulariser of UE's `cos phi = Lp . Vp * rsqrt(|Lp|^2 |Vp|^2 + 1e-4)`.
-const COS_PHI_EPSILON: f64 = 1e-4;
-/// `cos theta_d` is floored here before it divides: at `wi = -wo` along the tangent
-/// `theta_d = 90 degrees`, where single precision rounds `cos(pi/2)` to a negative number.
-const MIN_COS_THETA_D: f64 = 1e-30;
-/// The R lobe's width `sqrt(2) cos(phi/2) B_R` is floored here (UE's `1e-4` already keeps
-/// `cos(phi/2)` above 0.005; the floor makes the division safe by construction).
-const MIN_WIDTH: f64 = 1e-30;
+static COS_PHI_EPSILON: NamedConstant = NamedConstant {
+    name: "COS_PHI_EPSILON",
+    meaning: "1e-4, the regulariser of UE's cos phi = Lp.Vp rsqrt(|Lp|^2 |Vp|^2 + 1e-4)",
+    values: &[1e-4],
+};
 /// Absorption above this (per radius) is clamped, so that `f32` uniforms stay finite.
 const MAX_SIGMA_A: f64 = 1e30;
 
@@ -395,11 +413,13 @@ impl<R: Real> UnrealAngles<R> {
         let theta_d = R::c(0.5) * (safe_asin(sin_v) - safe_asin(sin_l)).abs();
         let projected = wi.y * wo.y + wi.z * wo.z;
         let (lp2, vp2) = (wi.y * wi.y + wi.z * wi.z, wo.y * wo.y + wo.z * wo.z);
-        let cos_phi = projected / (lp2 * vp2 + R::c(COS_PHI_EPSILON)).sqrt();
+        let cos_phi = projected / (lp2 * vp2 + COS_PHI_EPSILON.get()).sqrt();
         UnrealAngles {
             sum_of_sines: sin_l + sin_v,
             sin_v,
-            cos_theta_d: theta_d.cos().max(R::c(MIN_COS_THETA_D)),
+            // Floored before it divides: at `wi = -wo` along the tangent theta_d = 90 degrees,
+            // where single precision rounds `cos(pi/2)` to a negative number.
+            cos_theta_d: theta_d.cos().max(TINY.get()),
             cos_phi,
             cos_half_phi: saturate(R::c(0.5) + R::c(0.5) * cos_phi).sqrt(),
             v_dot_l: wo.dot(wi),
@@ -425,24 +445,25 @@ struct KarisLobes<R> {
 impl<R: Real, V: KarisVariant> KarisHair<R, V> {
     /// The R lobe: `Mp Np Fp` with the exact tilted-cone shift and the separable width.
     fn r(&self, a: &UnrealAngles<R>) -> R {
-        let alpha = -2.0 * SHIFT;
-        let (sa, ca) = (R::c(alpha.sin()), R::c(alpha.cos()));
+        let (sa, ca) = (R_TILT_SIN_COS.at::<R>(0), R_TILT_SIN_COS.at::<R>(1));
         let cos_v = safe_sqrt(R::c(1.0) - a.sin_v * a.sin_v);
         let shift = R::c(2.0) * sa * (ca * a.cos_half_phi * cos_v + sa * a.sin_v);
-        let b_scale = R::c(core::f64::consts::SQRT_2) * a.cos_half_phi;
-        let width = (self.uniforms.width_r * b_scale).max(R::c(MIN_WIDTH));
+        let b_scale = SQRT_2.get::<R>() * a.cos_half_phi;
+        // The R lobe's width `sqrt(2) cos(phi/2) B_R` is floored (UE's `1e-4` already keeps
+        // `cos(phi/2)` above 0.005; the floor makes the division safe by construction).
+        let width = (self.uniforms.width_r * b_scale).max(TINY.get());
         let mp = gaussian_lobe(width, a.sum_of_sines - shift);
-        mp * r_azimuthal(a.cos_half_phi, a.v_dot_l, R::c(ETA))
+        mp * r_azimuthal(a.cos_half_phi, a.v_dot_l, ETA.get())
     }
 
     /// The TT lobe per channel: `Mp Np Fp Tp` at Karis' offset h_TT.
     fn tt(&self, a: &UnrealAngles<R>) -> [R; 3] {
         let c = V::CONSTANTS;
         let one = R::c(1.0);
-        let mp = gaussian_lobe(self.uniforms.width_tt, a.sum_of_sines - R::c(SHIFT));
+        let mp = gaussian_lobe(self.uniforms.width_tt, a.sum_of_sines - SHIFT.get());
         let inv_eta_prime = inverse_eta_prime_karis(a.cos_theta_d, c.eta_prime);
         let h = h_tt_karis_of_cos(inv_eta_prime, a.cos_phi, a.cos_half_phi, c.h_tt);
-        let f = fresnel_schlick(a.cos_theta_d * saturate(one - h * h).sqrt(), R::c(ETA));
+        let f = fresnel_schlick(a.cos_theta_d * saturate(one - h * h).sqrt(), ETA.get());
         let fp = (one - f).sqr();
         let np = d_karis_of_cos(a.cos_phi, c.d_tt);
         let lobe = mp * np * fp;
@@ -454,8 +475,8 @@ impl<R: Real, V: KarisVariant> KarisHair<R, V> {
     /// The TRT lobe per channel: `Mp Np Fp Tp` at h = sqrt(3)/2.
     fn trt(&self, a: &UnrealAngles<R>) -> [R; 3] {
         let c = V::CONSTANTS;
-        let mp = gaussian_lobe(self.uniforms.width_trt, a.sum_of_sines - R::c(4.0 * SHIFT));
-        let f = fresnel_schlick(a.cos_theta_d * R::c(0.5), R::c(ETA));
+        let mp = gaussian_lobe(self.uniforms.width_trt, a.sum_of_sines - TRT_SHIFT.get());
+        let f = fresnel_schlick(a.cos_theta_d * R::c(0.5), ETA.get());
         let fp = (R::c(1.0) - f).sqr() * f;
         let np = d_karis_of_cos(a.cos_phi, c.d_trt);
         let lobe = mp * np * fp;
@@ -620,4 +641,17 @@ impl Approximation for KarisRefit<f64> {
     }
 
     const FITTED_INPUTS: &'static [&'static str] = &["sigma_a", "roughness"];
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The R lobe's tilt is written as its sine and cosine; they are those of `-2 Shift`.
+    #[test]
+    fn the_r_tilt_is_minus_twice_the_shift() {
+        let alpha = -2.0 * SHIFT.values[0];
+        assert_eq!(R_TILT_SIN_COS.values, &[alpha.sin(), alpha.cos()]);
+        assert_eq!(TRT_SHIFT.values[0], 4.0 * SHIFT.values[0]);
+    }
 }

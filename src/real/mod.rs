@@ -18,6 +18,7 @@
 //! [`SharedTable`]: multilinear interpolation, clamp to the edge, with the semantics of
 //! [`crate::lut::Table::lookup_into`] in every instantiation.
 
+mod named;
 mod simd;
 mod structure;
 mod traced;
@@ -27,6 +28,7 @@ use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Su
 
 use crate::lut::SharedTable;
 
+pub use named::{NamedConstant, FOUR_PI, INV_TWO_PI, PI, SQRT_2, SQRT_TWO_PI, TINY, TWO_PI};
 pub use simd::BatchReal;
 pub use structure::{
     Body, CallKind, CallSite, ConstArray, Function, FunctionKind, ShaderFunction, ShaderLoop, Shape,
@@ -108,6 +110,17 @@ pub trait Real:
         coords: [Self; D],
     ) -> [Self; C];
 
+    /// Value `index` of the named constant `constant` ([`NamedConstant::get`],
+    /// [`NamedConstant::at`]): `Self::c(value)` in every instantiation but the tracer, which
+    /// records the name with it so that shader code reads the constant by name.
+    ///
+    /// # Panics
+    /// If `index` is beyond `constant.values`.
+    #[inline(always)]
+    fn named(constant: &'static NamedConstant, index: usize) -> Self {
+        Self::c(constant.values[index])
+    }
+
     /// `body(args)`, marked as the shader function `function`: the `f32`, `f64` and SIMD
     /// instantiations just call `body`; the tracer records `body` once as a named function
     /// of the graph ([`Graph::functions`]) and here a call of it, so the emitted shader calls
@@ -116,7 +129,8 @@ pub trait Real:
     /// that `body` uses besides `args` become further parameters of the shader function.
     ///
     /// # Panics
-    /// Traced: if `function.parameters` do not have `N` scalars.
+    /// Traced: if `function.parameters` do not have `N` scalars or `function.result` does not
+    /// have `M`.
     #[inline(always)]
     fn call<const N: usize, const M: usize>(
         function: &'static ShaderFunction,
@@ -255,10 +269,10 @@ macro_rules! impl_real_for_float {
 impl_real_for_float!(f64, true, lookup_f64);
 impl_real_for_float!(f32, false, lookup_f32);
 
-/// pi as a constant of the working precision.
+/// pi as a constant of the working precision ([`PI`]).
 #[inline(always)]
 pub fn pi<R: Real>() -> R {
-    R::c(core::f64::consts::PI)
+    PI.get()
 }
 
 /// `sqrt(max(x, 0))`: the square root of a quantity that is non-negative in exact arithmetic
@@ -279,8 +293,7 @@ pub fn safe_asin<R: Real>(x: R) -> R {
 /// The angle `x` wrapped into [-pi, pi] without loops: `x - 2 pi floor((x + pi) / (2 pi))`.
 #[inline(always)]
 pub fn wrap_angle<R: Real>(x: R) -> R {
-    let two_pi = R::c(2.0 * core::f64::consts::PI);
-    x - two_pi * ((x + pi::<R>()) * R::c(0.5 * core::f64::consts::FRAC_1_PI)).floor()
+    x - TWO_PI.get::<R>() * ((x + pi::<R>()) * INV_TWO_PI.get::<R>()).floor()
 }
 
 /// `x^n` for a constant `n >= 1` by binary exponentiation: the product of the squares
@@ -309,12 +322,22 @@ pub(crate) fn powi<R: Real>(x: R, n: u32) -> R {
 /// Evaluates the polynomial `c[0] + c[1] x + c[2] x^2 + ...` by Horner's rule.
 #[inline(always)]
 pub fn horner<R: Real>(x: R, coefficients: &[f64]) -> R {
-    let mut rev = coefficients.iter().rev();
-    let mut acc = R::c(rev.next().copied().unwrap_or(0.0));
-    for &c in rev {
-        acc = acc * x + R::c(c);
-    }
-    acc
+    horner_highest_first(x, coefficients.iter().rev().map(|&c| R::c(c)))
+}
+
+/// [`horner`] of a named table of coefficients (lowest power first), which shader code reads
+/// by name.
+#[inline(always)]
+pub fn horner_named<R: Real>(x: R, coefficients: &'static NamedConstant) -> R {
+    let n = coefficients.values.len();
+    horner_highest_first(x, (0..n).rev().map(|k| coefficients.at(k)))
+}
+
+/// Horner's rule over the coefficients from the highest power down (0 for none).
+#[inline(always)]
+fn horner_highest_first<R: Real>(x: R, mut highest_first: impl Iterator<Item = R>) -> R {
+    let first = highest_first.next().unwrap_or_else(|| R::c(0.0));
+    highest_first.fold(first, |acc, c| acc * x + c)
 }
 
 #[cfg(test)]

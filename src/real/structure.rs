@@ -17,7 +17,9 @@ use std::collections::HashMap;
 
 /// A [`ShaderFunction`] describing the function `name` of the calling module: its source is
 /// `module_path!()::name`, its parameters the listed names (scalars, or `name: vec3` for a
-/// `vec3<f32>`), its result `f32` / `array<f32, N>` or, with `-> vec3`, `vec3<f32>`.
+/// `vec3<f32>`), its result `f32` / `array<f32, N>`, with `-> vec3` a `vec3<f32>`, and with
+/// `-> {name, name: vec3, ...}` a struct of those fields named after the function
+/// ([`ResultType::Fields`]).
 ///
 /// ```
 /// use hairmath::real::{Real, ShaderFunction};
@@ -31,6 +33,18 @@ use std::collections::HashMap;
 /// ```
 #[macro_export]
 macro_rules! shader_function {
+    ($name:ident, $equation:expr, [$($param:ident $(: $shape:ident)?),* $(,)?]
+        -> {$($field:ident $(: $field_shape:ident)?),+ $(,)?}) => {
+        $crate::real::ShaderFunction {
+            name: stringify!($name),
+            source: concat!(module_path!(), "::", stringify!($name)),
+            equation: $equation,
+            parameters: &[$((stringify!($param), $crate::shader_function!(@shape $($shape)?))),*],
+            result: $crate::real::ResultType::Fields(&[$(
+                (stringify!($field), $crate::shader_function!(@shape $($field_shape)?))
+            ),+]),
+        }
+    };
     ($name:ident, $equation:expr, [$($param:ident $(: $shape:ident)?),* $(,)?] $(-> $result:ident)?) => {
         $crate::real::ShaderFunction {
             name: stringify!($name),
@@ -78,7 +92,7 @@ pub struct ShaderFunction {
     /// The explicit parameters: name and shape, in order.
     pub parameters: &'static [(&'static str, Shape)],
     /// The result: `f32` for one output and `array<f32, N>` for N ([`ResultType::Scalars`]),
-    /// or `vec3<f32>` ([`ResultType::Vec3`]).
+    /// `vec3<f32>` ([`ResultType::Vec3`]) or a struct ([`ResultType::Fields`]).
     pub result: ResultType,
 }
 
@@ -99,12 +113,19 @@ pub struct ShaderLoop {
     pub array: &'static str,
     /// The names of one element's scalars.
     pub fields: &'static [&'static str],
-    /// The names of the state's scalars.
-    pub state: &'static [&'static str],
+    /// The state's values: names and shapes (a `vec3<f32>` is three state scalars).
+    pub state: &'static [(&'static str, Shape)],
     /// The Rust function the loop is in (a path in the crate).
     pub source: &'static str,
     /// The paper and equation the loop implements.
     pub equation: &'static str,
+}
+
+impl ShaderLoop {
+    /// Number of scalars of the state.
+    pub fn state_width(&self) -> usize {
+        self.state.iter().map(|(_, s)| s.width()).sum()
+    }
 }
 
 /// The statements of one shader function: nodes in evaluation order, whose operands are
@@ -304,7 +325,7 @@ mod tests {
         name: "scale_sum",
         array: "WEIGHTS",
         fields: &["weight", "offset"],
-        state: &["sum"],
+        state: &[("sum", Shape::Scalar)],
         source: "test",
         equation: "none",
     };

@@ -25,9 +25,9 @@
 
 use super::structure::{
     flatten, Body, CallKind, CallSite, ConstArray, Function, FunctionKind, ShaderFunction,
-    ShaderLoop,
+    ShaderLoop, Shape,
 };
-use super::Real;
+use super::{NamedConstant, Real};
 use crate::lut::{SharedTable, Table, MAX_AXES, MAX_CHANNELS};
 use core::cell::RefCell;
 use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Sub, SubAssign};
@@ -89,6 +89,14 @@ pub enum Node {
     Input(u32),
     /// An `f32` constant, stored as its bits.
     Const(u32),
+    /// Value `index` of the named constant `constant` of [`Graph::named_constants`]
+    /// ([`Real::named`]): a constant that shader code reads by name.
+    Named {
+        /// The index of the constant in [`Graph::named_constants`].
+        constant: u32,
+        /// Which of its values.
+        index: u32,
+    },
     /// A unary operation of an earlier node.
     Unary(Unary, u32),
     /// A binary operation of two earlier nodes.
@@ -180,6 +188,21 @@ pub enum ResultType {
     Scalars,
     /// `vec3<f32>` of exactly three outputs (an RGB value, a direction).
     Vec3,
+    /// A struct of named `f32` and `vec3<f32>` fields, the outputs in field order (a `vec3`
+    /// field as x, y, z), named after the function in upper camel case.
+    Fields(&'static [(&'static str, Shape)]),
+}
+
+impl ResultType {
+    /// Number of outputs the result needs, if the type fixes it (`None` for
+    /// [`ResultType::Scalars`]).
+    pub fn width(self) -> Option<usize> {
+        match self {
+            ResultType::Scalars => None,
+            ResultType::Vec3 => Some(3),
+            ResultType::Fields(fields) => Some(fields.iter().map(|(_, s)| s.width()).sum()),
+        }
+    }
 }
 
 /// The arguments and result of a traced function. The closure of [`trace_with`] receives one
@@ -300,6 +323,7 @@ pub struct Graph {
     signature: Signature,
     globals: Vec<f32>,
     tables: Vec<Arc<Table>>,
+    named: Vec<&'static NamedConstant>,
 }
 
 /// The body being recorded at one level of calls.
@@ -361,6 +385,8 @@ struct Recorder {
     arrays: Vec<ConstArray>,
     /// The tables fetched from, each once (by pointer).
     tables: Vec<Arc<Table>>,
+    /// The named constants read, each once (by name).
+    named: Vec<&'static NamedConstant>,
 }
 
 impl Recorder {
@@ -390,7 +416,7 @@ impl Recorder {
         let frame = &mut self.frames[level];
         // Literals are written again; everything else (baked uniforms included) is passed,
         // so that a function called with different uniforms is one function.
-        if matches!(outer_node, Node::Const(_)) {
+        if matches!(outer_node, Node::Const(_) | Node::Named { .. }) {
             return frame.intern(outer_node);
         }
         if let Some(&local) = frame.capture_index.get(&outer) {
@@ -443,6 +469,29 @@ impl Recorder {
             captures,
         });
         (self.functions.len() - 1) as u32
+    }
+
+    /// The index of the named constant `constant` (by name), added if new.
+    ///
+    /// # Panics
+    /// If an earlier constant of that name has other values (two constants may not share a
+    /// name in shader code).
+    fn add_named(&mut self, constant: &'static NamedConstant) -> u32 {
+        let k = match self.named.iter().position(|c| c.name == constant.name) {
+            Some(k) => {
+                assert!(
+                    self.named[k].values == constant.values,
+                    "two named constants are called {}",
+                    constant.name
+                );
+                k
+            }
+            None => {
+                self.named.push(constant);
+                self.named.len() - 1
+            }
+        };
+        k as u32
     }
 
     /// The index of the constant array of `info` with `elements`, added if new.
@@ -569,9 +618,15 @@ fn constant_value(x: Traced) -> Option<f32> {
         let level = rec.frames.iter().position(|f| f.trace == x.trace)?;
         match rec.frames[level].body.nodes[x.node as usize] {
             Node::Const(bits) => Some(f32::from_bits(bits)),
+            Node::Named { constant, index } => Some(named_value(&rec.named, constant, index)),
             _ => None,
         }
     })
+}
+
+/// Value `index` of named constant `constant` of `named`, rounded to `f32`.
+fn named_value(named: &[&'static NamedConstant], constant: u32, index: u32) -> f32 {
+    named[constant as usize].values[index as usize] as f32
 }
 
 /// A symbolic scalar: a node of the graph being traced.
@@ -619,7 +674,8 @@ pub fn trace(inputs: usize, f: impl FnOnce(&[Traced]) -> Vec<Traced>) -> Graph {
 /// # Panics
 /// If called while another trace is running on the same thread (traces do not nest), if a
 /// constant parameter does not have one value per scalar, or if the result type is
-/// [`ResultType::Vec3`] and `f` does not return exactly three values.
+/// [`ResultType::Vec3`] or [`ResultType::Fields`] and `f` does not return one value per
+/// scalar of it.
 pub fn trace_with(signature: Signature, f: impl FnOnce(&[Traced]) -> Vec<Traced>) -> Graph {
     let top = Frame::new(0);
     let trace = top.trace;
@@ -631,6 +687,7 @@ pub fn trace_with(signature: Signature, f: impl FnOnce(&[Traced]) -> Vec<Traced>
             functions: Vec::new(),
             arrays: Vec::new(),
             tables: Vec::new(),
+            named: Vec::new(),
         });
     });
     let session = Session;
@@ -641,8 +698,9 @@ pub fn trace_with(signature: Signature, f: impl FnOnce(&[Traced]) -> Vec<Traced>
         .expect("the recorder lives until the session ends");
     drop(session);
     assert!(
-        signature.result != ResultType::Vec3 || outputs.len() == 3,
-        "a vec3 result needs exactly three outputs, not {}",
+        signature.result.width().is_none_or(|w| w == outputs.len()),
+        "a result of type {:?} does not have {} outputs",
+        signature.result,
         outputs.len()
     );
     assert!(
@@ -654,6 +712,7 @@ pub fn trace_with(signature: Signature, f: impl FnOnce(&[Traced]) -> Vec<Traced>
         functions,
         arrays,
         tables,
+        named,
     } = rec;
     let mut body = frames.pop().expect("the top-level frame").body;
     body.outputs = outputs.iter().map(|t| t.node).collect();
@@ -672,6 +731,7 @@ pub fn trace_with(signature: Signature, f: impl FnOnce(&[Traced]) -> Vec<Traced>
         signature,
         globals,
         tables,
+        named,
     }
 }
 
@@ -761,6 +821,23 @@ impl Graph {
     /// Number of outputs of the traced function.
     pub fn output_count(&self) -> usize {
         self.outputs.len()
+    }
+
+    /// The value of `node` if it is a constant: a literal ([`Node::Const`]), a named constant
+    /// ([`Node::Named`]) or a baked uniform ([`Node::Global`]).
+    pub fn constant(&self, node: &Node) -> Option<f32> {
+        match *node {
+            Node::Const(bits) => Some(f32::from_bits(bits)),
+            Node::Named { constant, index } => Some(named_value(&self.named, constant, index)),
+            Node::Global(k) => Some(self.globals[k as usize]),
+            _ => None,
+        }
+    }
+
+    /// The named constants the graph reads ([`Node::Named`]), each once, in the order they
+    /// were first read.
+    pub fn named_constants(&self) -> &[&'static NamedConstant] {
+        &self.named
     }
 
     /// The tables the graph fetches from, in the order they were first fetched; a
@@ -872,6 +949,9 @@ impl Graph {
             match *node {
                 Node::Input(k) => value[i] = inputs[k as usize],
                 Node::Const(bits) => value[i] = f32::from_bits(bits),
+                Node::Named { constant, index } => {
+                    value[i] = named_value(&self.named, constant, index)
+                }
                 Node::Global(k) => value[i] = self.globals[k as usize],
                 Node::Result { .. } => unreachable!("the flat graph has no calls"),
                 Node::Unary(op, a) => value[i] = apply_unary(op, v(a)),
@@ -951,14 +1031,19 @@ impl Graph {
             .collect();
         let ret = match (self.signature.result, self.outputs.len()) {
             (ResultType::Vec3, _) => "vec3<f32>".to_string(),
-            (ResultType::Scalars, 1) => "f32".to_string(),
-            (ResultType::Scalars, n) => format!("array<f32, {n}>"),
+            (_, 1) => "f32".to_string(),
+            (_, n) => format!("array<f32, {n}>"),
         };
         let _ = writeln!(out, "fn {name}({}) -> {ret} {{", params.join(", "));
         // The texture sample of each (table, coordinates, texture) already printed.
         let mut samples: HashMap<(u32, [u32; MAX_AXES], u32), usize> = HashMap::new();
         for (i, node) in self.nodes.iter().enumerate() {
-            if !live[i] || matches!(node, Node::Input(_) | Node::Const(_) | Node::Global(_)) {
+            if !live[i]
+                || matches!(
+                    node,
+                    Node::Input(_) | Node::Const(_) | Node::Named { .. } | Node::Global(_)
+                )
+            {
                 continue;
             }
             if let Node::Fetch {
@@ -1106,6 +1191,9 @@ impl Graph {
             Node::Input(k) => paths[k as usize].clone(),
             Node::Global(k) => wgsl_literal(self.globals[k as usize]),
             Node::Const(bits) => wgsl_literal(f32::from_bits(bits)),
+            Node::Named { constant, index } => {
+                wgsl_literal(named_value(&self.named, constant, index))
+            }
             _ => format!("t{id}"),
         }
     }
@@ -1113,7 +1201,9 @@ impl Graph {
     fn expression(&self, node: &Node, paths: &[String]) -> String {
         let o = |k: u32| self.operand(k, paths);
         match *node {
-            Node::Input(_) | Node::Const(_) | Node::Global(_) => unreachable!("inlined"),
+            Node::Input(_) | Node::Const(_) | Node::Named { .. } | Node::Global(_) => {
+                unreachable!("inlined")
+            }
             Node::Result { .. } => unreachable!("the flat graph has no calls"),
             Node::Unary(Unary::Neg, a) => format!("-{}", o(a)),
             Node::Unary(op, a) => format!("{}({})", unary_name(op), o(a)),
@@ -1155,7 +1245,11 @@ impl Node {
 /// site's arguments are the operands of the call).
 pub(super) fn map_operands(node: Node, mut f: impl FnMut(u32) -> u32) -> Node {
     match node {
-        Node::Input(_) | Node::Const(_) | Node::Global(_) | Node::Result { .. } => node,
+        Node::Input(_)
+        | Node::Const(_)
+        | Node::Named { .. }
+        | Node::Global(_)
+        | Node::Result { .. } => node,
         Node::Unary(op, a) => Node::Unary(op, f(a)),
         Node::Not(a) => Node::Not(f(a)),
         Node::Binary(op, a, b) => {
@@ -1349,6 +1443,18 @@ impl Real for Traced {
     fn c(value: f64) -> Self {
         Traced::from_record(record(Node::Const((value as f32).to_bits()), &[]))
     }
+    fn named(constant: &'static NamedConstant, index: usize) -> Self {
+        assert!(
+            index < constant.values.len(),
+            "{} has {} values, not {}",
+            constant.name,
+            constant.values.len(),
+            index + 1
+        );
+        let constant = with_recorder(|rec| rec.add_named(constant));
+        let index = index as u32;
+        Traced::from_record(record(Node::Named { constant, index }, &[]))
+    }
     fn sqrt(self) -> Self {
         self.unary(Unary::Sqrt)
     }
@@ -1429,6 +1535,12 @@ impl Real for Traced {
             function.name,
             function.input_count()
         );
+        assert!(
+            function.result.width().is_none_or(|w| w == M),
+            "shader function {} declares a result of type {:?} but returns {M} scalars",
+            function.name,
+            function.result
+        );
         let explicit = localize_in_top(&args);
         let outputs = record_call(
             FunctionKind::Function(function),
@@ -1450,11 +1562,11 @@ impl Real for Traced {
         body: impl Fn([Self; S], [Self; E]) -> [Self; S],
     ) -> [Self; S] {
         assert!(
-            info.fields.len() == E && info.state.len() == S,
+            info.fields.len() == E && info.state_width() == S,
             "loop {} names {} fields and {} state scalars but is called with {E} and {S}",
             info.name,
             info.fields.len(),
-            info.state.len()
+            info.state_width()
         );
         if elements.is_empty() {
             return init;

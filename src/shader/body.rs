@@ -2,14 +2,15 @@
 //! first), their calls and loops, and the top-level function.
 
 use super::builder::FnBuilder;
+use super::captures::{self, capture_shapes};
 use super::tables::{self, TableHelper};
 use super::types;
 use super::{constant_values, ShaderError, TextureBinding};
 use crate::lut::Table;
 use crate::lut::MAX_AXES;
 use crate::real::{
-    ArgType, Binary, Body, CallKind, CallSite, ConstArray, FunctionKind, Graph, Node, Parameter,
-    ResultType, Shape, Unary,
+    ArgType, Binary, Body, CallKind, CallSite, ConstArray, FunctionKind, Graph, NamedConstant,
+    Node, Parameter, ResultType, Shape, Unary,
 };
 use naga::{
     BinaryOperator, Constant, Expression, Function, Handle, MathFunction, Module, Span, Statement,
@@ -27,13 +28,39 @@ pub(super) enum ResultKind {
     Array(u32),
     /// `vec3<f32>`.
     Vec3,
+    /// A struct of `f32` and `vec3<f32>` fields ([`ResultType::Fields`]).
+    Struct {
+        ty: Handle<Type>,
+        fields: &'static [(&'static str, Shape)],
+    },
 }
 
 impl ResultKind {
-    /// The kind of a result of `outputs` values declared as `result`.
-    pub fn of(result: ResultType, outputs: usize) -> Self {
+    /// The kind of a result of `outputs` values declared as `result` by the function `name`
+    /// (a struct result is named after it: `fibre_path` returns a `FibrePath`).
+    pub fn of(result: ResultType, outputs: usize, name: &str, module: &mut Module) -> Self {
         match (result, outputs) {
             (ResultType::Vec3, _) => ResultKind::Vec3,
+            (ResultType::Fields(fields), _) => {
+                let members: Vec<(String, ArgType)> = fields
+                    .iter()
+                    .map(|&(field, shape)| {
+                        let ty = match shape {
+                            Shape::Scalar => ArgType::Scalar,
+                            Shape::Vec3 => ArgType::Vec3,
+                        };
+                        (field.to_string(), ty)
+                    })
+                    .collect();
+                let ty = types::arg_type(
+                    module,
+                    &ArgType::Struct(crate::real::StructType {
+                        name: camel_case(name),
+                        fields: members,
+                    }),
+                );
+                ResultKind::Struct { ty, fields }
+            }
             (ResultType::Scalars, 1) => ResultKind::Scalar,
             (ResultType::Scalars, n) => ResultKind::Array(n as u32),
         }
@@ -48,8 +75,46 @@ impl ResultKind {
                 let f = types::f32(module);
                 types::array(module, f, Some(n))
             }
+            ResultKind::Struct { ty, .. } => ty,
         }
     }
+
+    /// Where scalar output `k` is in a value of this kind: the access indices, and whether
+    /// the last one is a `vec3` component. `None` beyond the outputs.
+    pub fn output_path(self, k: u32) -> Option<(Vec<u32>, bool)> {
+        match self {
+            ResultKind::Scalar => (k == 0).then(|| (vec![], false)),
+            ResultKind::Array(n) => (k < n).then(|| (vec![k], false)),
+            ResultKind::Vec3 => (k < 3).then(|| (vec![k], true)),
+            ResultKind::Struct { fields, .. } => {
+                let mut first = 0;
+                for (field, &(_, shape)) in fields.iter().enumerate() {
+                    let width = shape.width() as u32;
+                    if k < first + width {
+                        return Some(match shape {
+                            Shape::Scalar => (vec![field as u32], false),
+                            Shape::Vec3 => (vec![field as u32, k - first], true),
+                        });
+                    }
+                    first += width;
+                }
+                None
+            }
+        }
+    }
+}
+
+/// Scalar output `k` of `value`, a result of kind `kind` (see [`ResultKind::output_path`]).
+pub(super) fn read_output(
+    b: &mut FnBuilder,
+    value: Handle<Expression>,
+    kind: ResultKind,
+    k: u32,
+) -> Option<Handle<Expression>> {
+    let (path, _) = kind.output_path(k)?;
+    Some(path.into_iter().fold(value, |base, index| {
+        b.expr(Expression::AccessIndex { base, index })
+    }))
 }
 
 /// Where a body's scalar parameter is read from: a value, or a component of one (a vector
@@ -129,7 +194,11 @@ fn liveness(body: &Body) -> Liveness {
 /// The operands of a node (a call result's are its site's arguments, handled apart).
 fn operands(node: &Node) -> Vec<u32> {
     match *node {
-        Node::Input(_) | Node::Const(_) | Node::Global(_) | Node::Result { .. } => vec![],
+        Node::Input(_)
+        | Node::Const(_)
+        | Node::Named { .. }
+        | Node::Global(_)
+        | Node::Result { .. } => vec![],
         Node::Unary(_, a) | Node::Not(a) => vec![a],
         Node::Binary(_, a, b)
         | Node::Less(a, b)
@@ -168,6 +237,8 @@ pub(super) struct Shared {
     arrays: Vec<(ConstArray, ArrayConstant)>,
     /// Constant parameters by name: type, values, the constant and its scalars' sources.
     constants: Vec<(Parameter, Handle<Constant>, Vec<Source>)>,
+    /// Named constants ([`Node::Named`]) by name, with their module constants.
+    named: Vec<(&'static NamedConstant, Handle<Constant>)>,
     /// Lowered functions by identity (name, kind and body with its references resolved).
     functions: HashMap<String, Lowered>,
     /// Every function name in the module.
@@ -203,8 +274,13 @@ pub(super) struct Lowering<'a> {
     functions: Vec<Option<Lowered>>,
     /// Per [`Node::Global`] scalar, where it is read.
     globals: Vec<Source>,
+    /// Per named constant of the graph, its constant in the module.
+    named: Vec<Handle<Constant>>,
     /// Per function, names for its captured parameters (from a call site's arguments).
     capture_names: Vec<Vec<String>>,
+    /// Per function, per captured parameter: whether a `vec3<f32>` of three starts there
+    /// ([`captures::vector_captures`]).
+    capture_vectors: Vec<Vec<bool>>,
     live: Vec<Liveness>,
     top_live: Liveness,
     reachable: Vec<bool>,
@@ -250,12 +326,17 @@ impl<'a> Lowering<'a> {
             arrays: Vec::new(),
             functions: vec![None; view.functions().len()],
             globals: Vec::new(),
+            named: Vec::new(),
             capture_names: vec![Vec::new(); view.functions().len()],
+            capture_vectors: Vec::new(),
             live,
             top_live,
             reachable: vec![false; view.functions().len()],
         };
         lowering.name_captures();
+        let sites: Vec<Vec<bool>> = lowering.live.iter().map(|l| l.sites.clone()).collect();
+        lowering.capture_vectors =
+            captures::vector_captures(view, &lowering.top_live.sites, &sites, &lowering.reachable);
         lowering
     }
 
@@ -372,6 +453,61 @@ impl<'a> Lowering<'a> {
                 .collect();
             self.globals.extend(sources.iter().cloned());
             self.shared.constants.push((p.clone(), constant, sources));
+        }
+        Ok(())
+    }
+
+    /// Declares the graph's named constants as module-scope constants of their names (an
+    /// `f32`, or an `array<f32, N>` for a table), each with a comment saying what it is.
+    ///
+    /// # Errors
+    /// [`ShaderError::ConstantConflict`] for a named constant of the name of an earlier one
+    /// with other values.
+    pub fn declare_named(&mut self) -> Result<(), ShaderError> {
+        for &named in self.view.named_constants() {
+            if let Some(&(earlier, constant)) =
+                self.shared.named.iter().find(|(c, _)| c.name == named.name)
+            {
+                if earlier.values != named.values {
+                    return Err(ShaderError::ConstantConflict {
+                        name: named.name.to_string(),
+                    });
+                }
+                self.named.push(constant);
+                continue;
+            }
+            let module = &mut self.shared.module;
+            let f32t = types::f32(module);
+            let literals: Vec<Handle<Expression>> = named
+                .values
+                .iter()
+                .map(|&v| self_append(module, Expression::Literal(naga::Literal::F32(v as f32))))
+                .collect();
+            let (ty, init) = match literals[..] {
+                [one] => (f32t, one),
+                _ => {
+                    let ty = types::array(module, f32t, Some(literals.len() as u32));
+                    let compose = Expression::Compose {
+                        ty,
+                        components: literals,
+                    };
+                    (ty, self_append(module, compose))
+                }
+            };
+            let constant = module.constants.append(
+                Constant {
+                    name: Some(named.name.to_string()),
+                    ty,
+                    init,
+                },
+                Span::UNDEFINED,
+            );
+            self.shared.names.insert(named.name.to_string());
+            self.shared
+                .comments
+                .push((named.name.to_string(), vec![named.meaning.to_string()]));
+            self.shared.named.push((named, constant));
+            self.named.push(constant);
         }
         Ok(())
     }
@@ -551,7 +687,7 @@ impl<'a> Lowering<'a> {
             if !self.reachable[f] {
                 continue;
             }
-            let key = self.identity(function);
+            let key = format!("{}{:?}", self.identity(function), self.capture_vectors[f]);
             if let Some(&lowered) = self.shared.functions.get(&key) {
                 self.functions[f] = Some(lowered);
                 continue;
@@ -561,28 +697,24 @@ impl<'a> Lowering<'a> {
             let mut inputs = Vec::new();
             let f32t = types::f32(&mut self.shared.module);
             let vec3t = types::vec3(&mut self.shared.module);
+            let outputs = function.body.outputs.len();
+            let module = &mut self.shared.module;
             let result = match function.kind {
                 FunctionKind::Function(info) => {
-                    for &(name, shape) in info.parameters {
-                        match shape {
-                            Shape::Scalar => inputs.push(Source::Value(b.argument(name, f32t))),
-                            Shape::Vec3 => {
-                                let base = b.argument(name, vec3t);
-                                inputs.extend((0..3).map(|i| Source::Component {
-                                    base,
-                                    path: vec![i],
-                                    vector: true,
-                                }));
-                            }
-                        }
-                    }
-                    ResultKind::of(info.result, function.body.outputs.len())
+                    shaped_arguments(&mut b, f32t, vec3t, info.parameters, &mut inputs);
+                    ResultKind::of(info.result, outputs, &name, module)
                 }
-                FunctionKind::LoopBody(_) => {
-                    for name in explicit_names(function) {
+                FunctionKind::LoopBody(info) => {
+                    shaped_arguments(&mut b, f32t, vec3t, info.state, &mut inputs);
+                    let fields = (function.inputs as usize).saturating_sub(outputs);
+                    for name in field_names(info.fields, fields) {
                         inputs.push(Source::Value(b.argument(&name, f32t)));
                     }
-                    ResultKind::of(ResultType::Scalars, function.body.outputs.len())
+                    let result = match info.state {
+                        [(_, Shape::Scalar)] => ResultType::Scalars,
+                        state => ResultType::Fields(state),
+                    };
+                    ResultKind::of(result, outputs, &name, module)
                 }
             };
             if inputs.len() != function.inputs as usize {
@@ -593,9 +725,20 @@ impl<'a> Lowering<'a> {
                     function.inputs
                 )));
             }
-            for name in self.capture_names[f].clone() {
-                inputs.push(Source::Value(b.argument(&name, f32t)));
-            }
+            let names = self.capture_names[f].clone();
+            let mut first = 0;
+            let captured: Vec<(&str, Shape)> = capture_shapes(&self.capture_vectors[f])
+                .into_iter()
+                .map(|shape| {
+                    let name = names[first].as_str();
+                    first += shape.width();
+                    match shape {
+                        Shape::Scalar => (name, shape),
+                        Shape::Vec3 => (name.strip_suffix("_x").unwrap_or(name), shape),
+                    }
+                })
+                .collect();
+            shaped_arguments(&mut b, f32t, vec3t, &captured, &mut inputs);
             let ty = result.ty(&mut self.shared.module);
             b.result(ty);
             let live = std::mem::replace(
@@ -658,7 +801,12 @@ impl<'a> Lowering<'a> {
             }));
         }
         let body = view.body();
-        let result = ResultKind::of(view.signature().result, body.outputs.len());
+        let result = ResultKind::of(
+            view.signature().result,
+            body.outputs.len(),
+            name,
+            &mut self.shared.module,
+        );
         let ty = result.ty(&mut self.shared.module);
         b.result(ty);
         let live = std::mem::replace(
@@ -716,6 +864,22 @@ impl<'a> Lowering<'a> {
                     components: outputs.to_vec(),
                 })
             }
+            ResultKind::Struct { ty, fields } => {
+                let vec3t = types::vec3(&mut self.shared.module);
+                let mut rest = outputs;
+                let components = fields
+                    .iter()
+                    .map(|&(_, shape)| {
+                        let (field, tail) = rest.split_at(shape.width());
+                        rest = tail;
+                        match shape {
+                            Shape::Scalar => field[0],
+                            Shape::Vec3 => compose(b, vec3t, field, &HashMap::new()),
+                        }
+                    })
+                    .collect();
+                b.expr(Expression::Compose { ty, components })
+            }
         }
     }
 
@@ -734,6 +898,7 @@ impl<'a> Lowering<'a> {
             paths: HashMap::new(),
             fetches: HashMap::new(),
             sites: HashMap::new(),
+            constants: HashMap::new(),
         };
         for (i, node) in body.nodes.iter().enumerate() {
             if !live.nodes[i] {
@@ -756,6 +921,7 @@ impl<'a> Lowering<'a> {
                     ctx.read(b, &source)
                 }
                 Node::Const(bits) => b.f32(f32::from_bits(bits)),
+                Node::Named { constant, index } => self.named_value(b, constant, index)?,
                 Node::Unary(op, a) => unary(b, op, v(a, &ctx)),
                 Node::Binary(op, l, r) => binary(b, op, v(l, &ctx), v(r, &ctx)),
                 Node::Less(l, r) => b.expr(Expression::Binary {
@@ -809,6 +975,26 @@ impl<'a> Lowering<'a> {
                 })
             })
             .collect()
+    }
+
+    /// Value `index` of the graph's named constant `constant`, read by name.
+    fn named_value(
+        &self,
+        b: &mut FnBuilder,
+        constant: u32,
+        index: u32,
+    ) -> Result<Handle<Expression>, ShaderError> {
+        let named = self.view.named_constants().get(constant as usize);
+        let (Some(named), Some(&handle)) = (named, self.named.get(constant as usize)) else {
+            return Err(ShaderError::Unsupported(format!(
+                "named constant {constant} is not declared"
+            )));
+        };
+        let base = b.expr(Expression::Constant(handle));
+        Ok(match named.values.len() {
+            1 => base,
+            _ => b.expr(Expression::AccessIndex { base, index }),
+        })
     }
 
     /// Channel `channel` of the table fetch at `coords`: one helper call per distinct
@@ -877,18 +1063,30 @@ impl<'a> Lowering<'a> {
             ctx.sites.insert(site, lowered);
         }
         Ok(match ctx.sites[&site] {
-            SiteValue::Call { result, kind } => match kind {
-                ResultKind::Scalar => result,
-                _ => b.expr(Expression::AccessIndex {
-                    base: result,
-                    index: output,
-                }),
-            },
+            SiteValue::Call { result, kind } => {
+                let (path, vector) = kind.output_path(output).ok_or_else(|| {
+                    ShaderError::Unsupported(format!("call output {output} beyond its result"))
+                })?;
+                ctx.path(b, result, &path, vector)
+            }
             SiteValue::Loop { ref state } => {
-                let pointer = *state.get(output as usize).ok_or_else(|| {
+                let mut first = 0;
+                let mut found = None;
+                for &(value, shape) in state {
+                    let width = shape.width() as u32;
+                    if output < first + width {
+                        found = Some((value, shape, output - first));
+                        break;
+                    }
+                    first += width;
+                }
+                let (value, shape, component) = found.ok_or_else(|| {
                     ShaderError::Unsupported(format!("loop output {output} beyond its state"))
                 })?;
-                b.load(pointer)
+                match shape {
+                    Shape::Scalar => value,
+                    Shape::Vec3 => ctx.path(b, value, &[component], true),
+                }
             }
         })
     }
@@ -931,24 +1129,16 @@ impl<'a> Lowering<'a> {
             .iter()
             .map(|&a| ctx.values[a as usize].expect("arguments come before the call"))
             .collect();
-        let mut args = Vec::new();
-        let mut rest = &values[..];
-        if let FunctionKind::Function(info) = function.kind {
-            let vec3t = types::vec3(&mut self.shared.module);
-            for &(_, shape) in info.parameters {
-                match shape {
-                    Shape::Scalar => {
-                        args.push(rest[0]);
-                        rest = &rest[1..];
-                    }
-                    Shape::Vec3 => {
-                        args.push(compose(b, vec3t, &rest[..3], &ctx.origin));
-                        rest = &rest[3..];
-                    }
-                }
-            }
-        }
-        args.extend_from_slice(rest);
+        let vec3t = types::vec3(&mut self.shared.module);
+        let explicit = match function.kind {
+            FunctionKind::Function(info) => info.parameters,
+            FunctionKind::LoopBody(_) => &[],
+        };
+        let shapes = explicit.iter().map(|&(_, shape)| shape);
+        let (mut args, rest) = shaped_values(b, vec3t, shapes, &values, &ctx.origin);
+        let captures = capture_shapes(&self.capture_vectors[call.function as usize]);
+        let (captured, _) = shaped_values(b, vec3t, captures, rest, &ctx.origin);
+        args.extend(captured);
         let result = b.call(lowered.handle, args);
         Ok(SiteValue::Call {
             result,
@@ -975,6 +1165,7 @@ impl<'a> Lowering<'a> {
         let width = array_width(&self.view.arrays()[array as usize]);
         if function.inputs as usize != state_len + width
             || call.args.len() != state_len + function.captures as usize
+            || info.state_width() != state_len
         {
             return Err(ShaderError::Unsupported(format!(
                 "loop {} threads {state_len} state scalars over elements of {width} but takes \
@@ -985,12 +1176,21 @@ impl<'a> Lowering<'a> {
             )));
         }
         let f32t = types::f32(&mut self.shared.module);
+        let vec3t = types::vec3(&mut self.shared.module);
         let u32t = types::u32(&mut self.shared.module);
-        let names = field_names(info.state, state_len);
-        let mut state = Vec::with_capacity(state_len);
-        for (s, name) in names.iter().enumerate() {
-            let init = ctx.values[call.args[s] as usize].expect("arguments come before the loop");
-            let var = b.local(name, f32t, None);
+        let initial: Vec<Handle<Expression>> = call.args[..state_len]
+            .iter()
+            .map(|&a| ctx.values[a as usize].expect("arguments come before the loop"))
+            .collect();
+        let state_shapes = info.state.iter().map(|&(_, shape)| shape);
+        let (initial, _) = shaped_values(b, vec3t, state_shapes, &initial, &ctx.origin);
+        let mut state = Vec::with_capacity(info.state.len());
+        for (&(name, shape), init) in info.state.iter().zip(initial) {
+            let ty = match shape {
+                Shape::Scalar => f32t,
+                Shape::Vec3 => vec3t,
+            };
+            let var = b.local(name, ty, None);
             b.store(var, init);
             state.push(var);
         }
@@ -1000,6 +1200,8 @@ impl<'a> Lowering<'a> {
             .iter()
             .map(|&a| ctx.values[a as usize].expect("captures come before the loop"))
             .collect();
+        let shapes = capture_shapes(&self.capture_vectors[call.function as usize]);
+        let (captures, _) = shaped_values(b, vec3t, shapes, &captures, &ctx.origin);
 
         b.open_block();
         let index = b.load(k);
@@ -1061,6 +1263,11 @@ impl<'a> Lowering<'a> {
             continuing,
             break_if: None,
         });
+        let state = state
+            .iter()
+            .zip(info.state)
+            .map(|(&var, &(_, shape))| (b.load(var), shape))
+            .collect();
         Ok(SiteValue::Loop { state })
     }
 }
@@ -1071,8 +1278,9 @@ enum SiteValue {
         result: Handle<Expression>,
         kind: ResultKind,
     },
+    /// The state's values after the loop, with their shapes.
     Loop {
-        state: Vec<Handle<Expression>>,
+        state: Vec<(Handle<Expression>, Shape)>,
     },
 }
 
@@ -1085,6 +1293,9 @@ struct BodyContext {
     paths: HashMap<(Handle<Expression>, Vec<u32>), Handle<Expression>>,
     fetches: HashMap<(u32, [u32; MAX_AXES]), Handle<Expression>>,
     sites: HashMap<u32, SiteValue>,
+    /// The expression of each module-scope constant read (one, so that its components are
+    /// recognised as components of one value).
+    constants: HashMap<Handle<Constant>, Handle<Expression>>,
 }
 
 impl BodyContext {
@@ -1098,7 +1309,10 @@ impl BodyContext {
                 path,
                 vector,
             } => {
-                let base = b.expr(Expression::Constant(*constant));
+                let base = *self
+                    .constants
+                    .entry(*constant)
+                    .or_insert_with(|| b.expr(Expression::Constant(*constant)));
                 self.path(b, base, path, *vector)
             }
         }
@@ -1214,7 +1428,7 @@ fn self_append(module: &mut Module, e: Expression) -> Handle<Expression> {
 
 /// The access paths of the scalars of a value of type `ty` (a vector's components, a
 /// struct's fields recursively) and whether each ends in a vector component.
-fn scalar_paths(ty: &ArgType, prefix: &mut Vec<u32>, out: &mut Vec<(Vec<u32>, bool)>) {
+pub(super) fn scalar_paths(ty: &ArgType, prefix: &mut Vec<u32>, out: &mut Vec<(Vec<u32>, bool)>) {
     match ty {
         ArgType::Scalar => out.push((prefix.clone(), false)),
         ArgType::Vec3 => {
@@ -1285,13 +1499,71 @@ fn explicit_names(function: &crate::real::Function) -> Vec<String> {
             out
         }
         FunctionKind::LoopBody(info) => {
-            let state = function.body.outputs.len();
-            let mut out = field_names(info.state, state);
-            let fields = (function.inputs as usize).saturating_sub(state);
+            let mut out = shaped_names(info.state);
+            let fields = (function.inputs as usize).saturating_sub(out.len());
             out.extend(field_names(info.fields, fields));
             out
         }
     }
+}
+
+/// Per scalar of the values `shapes`, its name: `name`, or `name_x`, `name_y`, `name_z`.
+fn shaped_names(shapes: &[(&str, Shape)]) -> Vec<String> {
+    let mut out = Vec::new();
+    for &(name, shape) in shapes {
+        match shape {
+            Shape::Scalar => out.push(name.to_string()),
+            Shape::Vec3 => out.extend(["x", "y", "z"].map(|c| format!("{name}_{c}"))),
+        }
+    }
+    out
+}
+
+/// Declares an argument per value of `shapes` and appends where each scalar is read.
+fn shaped_arguments(
+    b: &mut FnBuilder,
+    f32t: Handle<Type>,
+    vec3t: Handle<Type>,
+    shapes: &[(&str, Shape)],
+    inputs: &mut Vec<Source>,
+) {
+    for &(name, shape) in shapes {
+        match shape {
+            Shape::Scalar => inputs.push(Source::Value(b.argument(name, f32t))),
+            Shape::Vec3 => {
+                let base = b.argument(name, vec3t);
+                inputs.extend((0..3).map(|i| Source::Component {
+                    base,
+                    path: vec![i],
+                    vector: true,
+                }));
+            }
+        }
+    }
+}
+
+/// The leading `scalars` as one value per entry of `shapes` (three composed into a
+/// `vec3<f32>`), and the scalars after them.
+fn shaped_values<'s>(
+    b: &mut FnBuilder,
+    vec3t: Handle<Type>,
+    shapes: impl IntoIterator<Item = Shape>,
+    scalars: &'s [Handle<Expression>],
+    origin: &HashMap<Handle<Expression>, (Handle<Expression>, u32)>,
+) -> (Vec<Handle<Expression>>, &'s [Handle<Expression>]) {
+    let mut rest = scalars;
+    let values = shapes
+        .into_iter()
+        .map(|shape| {
+            let (value, tail) = rest.split_at(shape.width());
+            rest = tail;
+            match shape {
+                Shape::Scalar => value[0],
+                Shape::Vec3 => compose(b, vec3t, value, origin),
+            }
+        })
+        .collect();
+    (values, rest)
 }
 
 /// `count` names: `names` if it has that many, else `s0, s1, ...` / `e0, e1, ...`.
@@ -1343,12 +1615,19 @@ pub(super) fn world_companion(
     };
     let (frame_top, local_top) = (find(frame)?, find(local)?);
     let frame_params = &frame_top.signature.parameters;
+    let two_directions = matches!(
+        frame_top.result,
+        ResultKind::Struct {
+            fields: [(_, Shape::Vec3), (_, Shape::Vec3)],
+            ..
+        }
+    );
     if frame_params.len() != 3
         || frame_params.iter().any(|p| p.ty != ArgType::Vec3)
-        || frame_top.result != ResultKind::Array(6)
+        || !two_directions
     {
         return Err(ShaderError::Unsupported(format!(
-            "{frame} does not map three vec3<f32> to six scalars"
+            "{frame} does not map three vec3<f32> to a struct of two vec3<f32>"
         )));
     }
     let local_params = &local_top.signature.parameters;
@@ -1379,21 +1658,14 @@ pub(super) fn world_companion(
     let ty = local_top.result.ty(module);
     b.result(ty);
     let local_dirs = b.call(frame_top.handle, directions);
-    let mut args = Vec::with_capacity(2 + rest.len());
-    for first in [0, 3] {
-        let components = (first..first + 3)
-            .map(|i| {
-                b.expr(Expression::AccessIndex {
-                    base: local_dirs,
-                    index: i,
-                })
+    let mut args: Vec<Handle<Expression>> = (0..2)
+        .map(|index| {
+            b.expr(Expression::AccessIndex {
+                base: local_dirs,
+                index,
             })
-            .collect();
-        args.push(b.expr(Expression::Compose {
-            ty: vec3t,
-            components,
-        }));
-    }
+        })
+        .collect();
     args.extend(rest);
     let value = b.call(local_top.handle, args);
     b.ret(Some(value));

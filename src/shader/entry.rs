@@ -1,6 +1,6 @@
 //! The compute entry point of the binding contract (see [`super::ShaderModule::with_compute_entry`]).
 
-use super::body::ResultKind;
+use super::body::{read_output, ResultKind};
 use super::builder::FnBuilder;
 use super::types;
 use super::{
@@ -93,18 +93,7 @@ pub(super) fn add_entry_point(
     let result_value = b.call(top, args);
     let out_first = bin(&mut b, BinaryOperator::Multiply, row, three);
     for c in 0..3u32 {
-        let value = match result {
-            ResultKind::Vec3 => b.expr(Expression::AccessIndex {
-                base: result_value,
-                index: c,
-            }),
-            ResultKind::Scalar if c == 0 => result_value,
-            ResultKind::Array(n) if c < n => b.expr(Expression::AccessIndex {
-                base: result_value,
-                index: c,
-            }),
-            _ => b.f32(0.0),
-        };
+        let value = read_output(&mut b, result_value, result, c).unwrap_or_else(|| b.f32(0.0));
         let offset = b.u32(c);
         let index = bin(&mut b, BinaryOperator::Add, out_first, offset);
         let pointer = b.expr(Expression::Access {

@@ -48,6 +48,7 @@
 
 mod body;
 mod builder;
+mod captures;
 mod entry;
 mod model;
 mod names;
@@ -266,6 +267,7 @@ impl ModuleBuilder {
     pub fn add(mut self, graph: &Graph, name: &str) -> Result<Self, ShaderError> {
         let mut lowering = Lowering::new(&mut self.shared, graph);
         lowering.declare_constants()?;
+        lowering.declare_named()?;
         lowering.declare_arrays();
         lowering.lower_functions()?;
         lowering.lower_top(name)?;

@@ -7,7 +7,7 @@
 //! - `hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>[, h: f32][, varying...]) -> vec3<f32>`: S in
 //!   the local frame (tangent +X, `wi` towards the light, `wo` towards the viewer), no cosine
 //!   factor: what `hairmath eval` returns for the same flags;
-//! - `fibre_local_directions(tangent, wi, wo) -> array<f32, 6>`: the local frame of
+//! - `fibre_local_directions(tangent, wi, wo) -> FibreLocalDirections` (`wi`, `wo`): the local frame of
 //!   [`crate::geometry::local_directions`];
 //! - `hair_bcsdf_world(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, ...) -> vec3<f32>`:
 //!   `hair_bcsdf` of the directions in the frame of `tangent`.

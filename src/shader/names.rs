@@ -106,7 +106,8 @@ pub(super) fn restore_arguments(text: &str, lang: Lang, tops: &[(String, Vec<Str
     out
 }
 
-/// The identifiers of `text`, in order.
+/// The identifiers of `text`, in order, without struct members (`x` of `v.x`: a member is
+/// no reference to a variable, so it neither shadows nor is renamed).
 fn words(text: &str) -> impl Iterator<Item = (usize, &str)> {
     let is_ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
     let mut out = Vec::new();
@@ -124,6 +125,7 @@ fn words(text: &str) -> impl Iterator<Item = (usize, &str)> {
     if let Some(s) = start {
         out.push((s, &text[s..]));
     }
+    out.retain(|&(s, _)| !text[..s].ends_with('.'));
     out.into_iter()
 }
 

@@ -269,19 +269,24 @@ fn attribute_start(lines: &[String], mut at: usize) -> usize {
     at
 }
 
-/// Whether `line` starts the definition of the function `name` (or of `name_`, naga's
-/// spelling of names that end in a digit or are keywords).
+/// Whether `line` starts the definition of the function or module-scope constant `name` (or
+/// of `name_`, naga's spelling of names that end in a digit or are keywords).
 pub(super) fn is_definition(line: &str, name: &str, lang: Lang) -> bool {
+    if line.starts_with(char::is_whitespace) || line.starts_with('#') {
+        return false;
+    }
+    let statement = line.trim_end().ends_with(';');
     [name.to_string(), format!("{name}_")]
         .iter()
         .any(|n| match lang {
-            Lang::Wgsl => line.starts_with(&format!("fn {n}(")),
-            _ => {
-                !line.starts_with(char::is_whitespace)
-                    && !line.starts_with('#')
-                    && !line.trim_end().ends_with(';')
-                    && line.contains(&format!(" {n}("))
+            Lang::Wgsl => {
+                line.starts_with(&format!("fn {n}(")) || line.starts_with(&format!("const {n}:"))
             }
+            _ if statement => {
+                line.contains("const")
+                    && (line.contains(&format!(" {n} =")) || line.contains(&format!(" {n}[")))
+            }
+            _ => line.contains(&format!(" {n}(")),
         })
 }
 

@@ -339,13 +339,8 @@ impl<'g> BoundPlan<'g> {
                             [NONE; 3],
                         )
                     }
-                    Node::Const(bits) => {
-                        let v = f32::from_bits(bits);
-                        let b = literal(f64::from(v), rules);
-                        (v, b, Pieces::one(ANY), None, [NONE; 3])
-                    }
-                    Node::Global(k) => {
-                        let v = graph.globals()[k as usize];
+                    Node::Const(_) | Node::Named { .. } | Node::Global(_) => {
+                        let v = graph.constant(node).expect("a constant node");
                         let b = literal(f64::from(v), rules);
                         (v, b, Pieces::one(ANY), None, [NONE; 3])
                     }
@@ -1261,8 +1256,9 @@ fn device_nodes(graph: &Graph, inputs: &[f32], device: Device, rules: &AccuracyR
                     x
                 }
             }
-            Node::Const(bits) => f64::from(f32::from_bits(bits)),
-            Node::Global(k) => f64::from(graph.globals()[k as usize]),
+            Node::Const(_) | Node::Named { .. } | Node::Global(_) => {
+                f64::from(graph.constant(node).expect("a constant node"))
+            }
             Node::Result { .. } => unreachable!("flat"),
             Node::Unary(op, a) => {
                 let x = v(a);
@@ -2281,10 +2277,7 @@ fn hair_main(@builtin(global_invocation_id) id: vec3<u32>) {{
 fn kernel_constants_match_the_traced_ones() {
     assert_eq!(pi::<f32>(), PI as f32);
     let g = trace(1, |a| vec![wrap_angle(a[0])]);
-    assert!(g
-        .nodes()
-        .contains(&Node::Const(((2.0 * PI) as f32).to_bits())));
-    assert!(g.nodes().contains(&Node::Const(
-        ((0.5 * std::f64::consts::FRAC_1_PI) as f32).to_bits()
-    )));
+    let constants: Vec<f32> = g.nodes().iter().filter_map(|n| g.constant(n)).collect();
+    assert!(constants.contains(&((2.0 * PI) as f32)));
+    assert!(constants.contains(&((0.5 * std::f64::consts::FRAC_1_PI) as f32)));
 }

@@ -10,6 +10,7 @@
 #![cfg(feature = "shader")]
 
 mod interpret;
+mod names;
 
 use hairmath::bcsdf::{
     trace_eval, trace_eval_with, traced_inputs, ChiangFarField, FarFieldRule, FromInputs, Model,
@@ -18,7 +19,7 @@ use hairmath::bcsdf::{
 use hairmath::lut::{Axis, SharedTable, Table, TableMeta};
 use hairmath::params::HairParams;
 use hairmath::real::{trace, trace_with, ArgType, Graph, Parameter, ResultType, Signature};
-use hairmath::real::{Real, StructType, Traced};
+use hairmath::real::{Real, Shape, StructType, Traced};
 use hairmath::registry::{find_model, MODELS};
 use hairmath::shader::{lower, ModuleBuilder, ShaderError, ShaderModule, ENTRY_POINT};
 use interpret::{Interpreter, Texture, Value};
@@ -836,14 +837,15 @@ fn graphs_in_one_module_share_equal_functions_tables_and_constants() {
     );
 }
 
-/// A stand-in for the fibre frame: `(tangent, wi, wo)` -> local wi and wo as six scalars
-/// (here the components of wi and wo in a frame built from the tangent's components).
+/// A stand-in for the fibre frame: `(tangent, wi, wo)` -> local wi and wo as a struct of two
+/// `vec3<f32>` (here the components of wi and wo in a frame built from the tangent's
+/// components).
 fn frame_graph() -> Graph {
     let signature = Signature {
         parameters: ["tangent", "wi", "wo"]
             .map(|n| Parameter::argument(n, ArgType::Vec3))
             .to_vec(),
-        result: ResultType::Scalars,
+        result: ResultType::Fields(&[("wi", Shape::Vec3), ("wo", Shape::Vec3)]),
     };
     trace_with(signature, |x| {
         let (t, wi, wo) = (&x[0..3], &x[3..6], &x[6..9]);
@@ -882,7 +884,7 @@ fn world_companion_with(frame: &Graph) {
     reparse(&wgsl).unwrap_or_else(|e| panic!("{e}\n{wgsl}"));
     for signature in [
         "fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {",
-        "fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> array<f32, 6> {",
+        "fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> FibreLocalDirections {",
         "fn hair_bcsdf_world(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {",
     ] {
         assert!(wgsl.contains(signature), "{signature}\n{wgsl}");

@@ -38,6 +38,14 @@ use hairmath::lobe::{i0, i0e_split, log_i0, log_i0e};
 use hairmath::lut::axis_cell;
 use hairmath::params::{HairParams, HairValues};
 use hairmath::real::{horner, pi, safe_asin, safe_sqrt, trace, wrap_angle, Graph, Real, Traced};
+use hairmath::real::{horner_named, NamedConstant};
+
+/// A named table of polynomial coefficients (Abramowitz and Stegun 9.8.2's first five).
+static COEFFICIENTS: NamedConstant = NamedConstant {
+    name: "COEFFICIENTS",
+    meaning: "a test table",
+    values: &[0.39894228, 0.01328592, 0.00225319, -0.00157565, 0.00916281],
+};
 use hairmath::real::{ArgType, Parameter, ResultType};
 use hairmath::sh::{eval_sh, eval_sh_into};
 use hairmath::sh::{product, triple_product_integral, ProductPlan};
@@ -634,6 +642,12 @@ traced_tests! {
     }
     real_wrap_angle ["wrap_angle"] {
         case!("wrap_angle", scalars(&[WRAP_X]), |x| vec![wrap_angle(x[0])]);
+    }
+    real_named_constants ["NamedConstant::get", "NamedConstant::at", "horner_named"] {
+        case!("named constants", vec![vec![]], |_x| {
+            vec![hairmath::real::PI.get(), hairmath::real::TINY.get(), COEFFICIENTS.at(2)]
+        });
+        case!("horner_named", scalars(&[HORNER_X]), |x| vec![horner_named(x[0], &COEFFICIENTS)]);
     }
     real_horner ["horner"] {
         let as_9_8_2 = [0.39894228, 0.01328592, 0.00225319, -0.00157565, 0.00916281];
