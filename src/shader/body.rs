@@ -87,21 +87,28 @@ impl ResultKind {
             ResultKind::Array(n) => (k < n).then(|| (vec![k], false)),
             ResultKind::Vec3 => (k < 3).then(|| (vec![k], true)),
             ResultKind::Struct { fields, .. } => {
-                let mut first = 0;
-                for (field, &(_, shape)) in fields.iter().enumerate() {
-                    let width = shape.width() as u32;
-                    if k < first + width {
-                        return Some(match shape {
-                            Shape::Scalar => (vec![field as u32], false),
-                            Shape::Vec3 => (vec![field as u32, k - first], true),
-                        });
-                    }
-                    first += width;
-                }
-                None
+                let (field, shape, component) = locate(fields.iter().map(|&(_, s)| s), k)?;
+                Some(match shape {
+                    Shape::Scalar => (vec![field as u32], false),
+                    Shape::Vec3 => (vec![field as u32, component], true),
+                })
             }
         }
     }
+}
+
+/// Where scalar `k` of values of the shapes `shapes` (flattened in order, a `vec3` as three)
+/// is: the value's index, its shape and the component within it (0 for a scalar).
+fn locate(shapes: impl IntoIterator<Item = Shape>, k: u32) -> Option<(usize, Shape, u32)> {
+    let mut first = 0;
+    for (index, shape) in shapes.into_iter().enumerate() {
+        let width = shape.width() as u32;
+        if k < first + width {
+            return Some((index, shape, k - first));
+        }
+        first += width;
+    }
+    None
 }
 
 /// Scalar output `k` of `value`, a result of kind `kind` (see [`ResultKind::output_path`]).
@@ -866,18 +873,8 @@ impl<'a> Lowering<'a> {
             }
             ResultKind::Struct { ty, fields } => {
                 let vec3t = types::vec3(&mut self.shared.module);
-                let mut rest = outputs;
-                let components = fields
-                    .iter()
-                    .map(|&(_, shape)| {
-                        let (field, tail) = rest.split_at(shape.width());
-                        rest = tail;
-                        match shape {
-                            Shape::Scalar => field[0],
-                            Shape::Vec3 => compose(b, vec3t, field, &HashMap::new()),
-                        }
-                    })
-                    .collect();
+                let shapes = fields.iter().map(|&(_, shape)| shape);
+                let (components, _) = shaped_values(b, vec3t, shapes, outputs, &HashMap::new());
                 b.expr(Expression::Compose { ty, components })
             }
         }
@@ -1070,19 +1067,11 @@ impl<'a> Lowering<'a> {
                 ctx.path(b, result, &path, vector)
             }
             SiteValue::Loop { ref state } => {
-                let mut first = 0;
-                let mut found = None;
-                for &(value, shape) in state {
-                    let width = shape.width() as u32;
-                    if output < first + width {
-                        found = Some((value, shape, output - first));
-                        break;
-                    }
-                    first += width;
-                }
-                let (value, shape, component) = found.ok_or_else(|| {
+                let shapes = state.iter().map(|&(_, shape)| shape);
+                let (entry, shape, component) = locate(shapes, output).ok_or_else(|| {
                     ShaderError::Unsupported(format!("loop output {output} beyond its state"))
                 })?;
+                let value = state[entry].0;
                 match shape {
                     Shape::Scalar => value,
                     Shape::Vec3 => ctx.path(b, value, &[component], true),
