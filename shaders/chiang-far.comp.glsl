@@ -96,9 +96,9 @@ layout(std430, binding = 1) buffer type_6_block_1Compute { float _group_0_bindin
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
 FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
-    float _e38 = (((1.0 * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0.0 * ((wi_in.z * 0.0) - (0.0 * wo_in.z)))) + (0.0 * ((0.0 * wo_in.y) - (wi_in.y * 0.0))));
-    float _e43 = (((0.0 * 0.0) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
+    float _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
+    float _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e26, ((0.0 < (abs(_e26) + abs(_e29))) ? _e29 : 1.0)));
 }
 
 // hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
@@ -116,13 +116,13 @@ float fresnel(float cos_i, float eta, float inv_eta) {
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-FibrePath fibre_path(float h, float c2_, float inv_eta_1, float c3_, float eta_1) {
+FibrePath fibre_path(float h, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float eta) {
     float _e8 = min(max(h, -(1.0)), 1.0);
-    float _e11 = (((_e8 * c2_) * inv_eta_1) * c3_);
+    float _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
     float _e16 = sqrt(max((1.0 - (_e11 * _e11)), 0.0));
     float _e20 = sqrt(max((1.0 - (_e8 * _e8)), 0.0));
-    float _e22 = fresnel((c2_ * _e20), eta_1, inv_eta_1);
-    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * c3_), _e22);
+    float _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
+    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * inv_cos_theta_t), _e22);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
@@ -155,27 +155,29 @@ TrimmedLogistics trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, 
 }
 
 // hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature
-FarFieldNode far_field_node(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 residual_in, float h_1, float weight, float c0_, float inv_eta_2, float c2_1, float eta_2, vec3 sigma_a, float c7_, float logistic_inv_scale_1, float logistic_norm_1) {
-    float _e26 = (c0_ * inv_eta_2);
-    FibrePath _e34 = fibre_path(h_1, c2_1, inv_eta_2, (1.0 / sqrt(max((1.0 - (_e26 * _e26)), 0.0))), eta_2);
+FarFieldNode far_field_node(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 residual_in, float h, float weight, float sin_theta_o, float inv_eta, float cos_theta_o, float eta, vec3 sigma_a, float phi, float logistic_inv_scale, float logistic_norm) {
+    float _e26 = (sin_theta_o * inv_eta);
+    float cos_theta_t = sqrt(max((1.0 - (_e26 * _e26)), 0.0));
+    float inv_cos_theta_t = (1.0 / cos_theta_t);
+    FibrePath _e34 = fibre_path(h, cos_theta_o, inv_eta, inv_cos_theta_t, eta);
     Attenuations _e43 = attenuations(_e34.fresnel, exp((-(sigma_a.x) * _e34.segment_length)));
     Attenuations _e52 = attenuations(_e34.fresnel, exp((-(sigma_a.y) * _e34.segment_length)));
     Attenuations _e61 = attenuations(_e34.fresnel, exp((-(sigma_a.z) * _e34.segment_length)));
     float _e66 = exit_angle(0.0, _e34.gamma_o, _e34.gamma_t);
-    float _e67 = (c7_ - _e66);
+    float _e67 = (phi - _e66);
     float _e76 = exit_angle(1.0, _e34.gamma_o, _e34.gamma_t);
-    float _e77 = (c7_ - _e76);
+    float _e77 = (phi - _e76);
     float _e84 = exit_angle(2.0, _e34.gamma_o, _e34.gamma_t);
-    float _e85 = (c7_ - _e84);
-    TrimmedLogistics _e91 = trimmed_logistics((_e67 - (TWO_PI * floor(((_e67 + PI) * INV_TWO_PI)))), (_e77 - (TWO_PI * floor(((_e77 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), logistic_inv_scale_1, logistic_norm_1);
+    float _e85 = (phi - _e84);
+    TrimmedLogistics _e91 = trimmed_logistics((_e67 - (TWO_PI * floor(((_e67 + PI) * INV_TWO_PI)))), (_e77 - (TWO_PI * floor(((_e77 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
     return FarFieldNode(vec3((r_in.x + (weight * (_e43.r * _e91.r))), (r_in.y + (weight * (_e52.r * _e91.r))), (r_in.z + (weight * (_e61.r * _e91.r)))), vec3((tt_in.x + (weight * (_e43.tt * _e91.tt))), (tt_in.y + (weight * (_e52.tt * _e91.tt))), (tt_in.z + (weight * (_e61.tt * _e91.tt)))), vec3((trt_in.x + (weight * (_e43.trt * _e91.trt))), (trt_in.y + (weight * (_e52.trt * _e91.trt))), (trt_in.z + (weight * (_e61.trt * _e91.trt)))), vec3((residual_in.x + (weight * (_e43.residual * INV_TWO_PI))), (residual_in.y + (weight * (_e52.residual * INV_TWO_PI))), (residual_in.z + (weight * (_e61.residual * INV_TWO_PI)))));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
-float deon_lobe(float sin_i, float cos_i_1, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
-    float _e7 = (cos_i_1 * cos_o);
+float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
+    float _e7 = (cos_i * cos_o);
     float _e9 = (_e7 - (sin_i * sin_o));
-    float _e12 = ((sin_i * cos_o) + (cos_i_1 * sin_o));
+    float _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
     float _e22 = max((_e7 * inv_variance_r), 0.0);
     float _e27 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
     float _e28 = (_e27 * _e27);
@@ -194,6 +196,7 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     vec3 residual = vec3(0.0);
     uint k = 0u;
     FibreAngles _e30 = fibre_angles(wi, wo);
+    float phi = -(_e30.phi);
     r = vec3(0.0, 0.0, 0.0);
     tt = vec3(0.0, 0.0, 0.0);
     trt = vec3(0.0, 0.0, 0.0);
@@ -215,7 +218,7 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
         vec3 _e54 = tt;
         vec3 _e55 = trt;
         vec3 _e56 = residual;
-        FarFieldNode _e59 = far_field_node(_e53, _e54, _e55, _e56, FAR_FIELD_OFFSETS[_e51].h, FAR_FIELD_OFFSETS[_e51].weight, _e30.sin_theta_o, uniforms.inv_eta, _e30.cos_theta_o, uniforms.eta, uniforms.sigma_a, -(_e30.phi), uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        FarFieldNode _e59 = far_field_node(_e53, _e54, _e55, _e56, FAR_FIELD_OFFSETS[_e51].h, FAR_FIELD_OFFSETS[_e51].weight, _e30.sin_theta_o, uniforms.inv_eta, _e30.cos_theta_o, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
         r = _e59.r;
         tt = _e59.tt;
         trt = _e59.trt;

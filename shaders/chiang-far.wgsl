@@ -95,9 +95,9 @@ const FAR_FIELD_OFFSETS: array<FarFieldNodeElement, 64> = array<FarFieldNodeElem
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
 fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
-    let _e38 = (((1f * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0f * ((wi_in.z * 0f) - (0f * wo_in.z)))) + (0f * ((0f * wo_in.y) - (wi_in.y * 0f))));
-    let _e43 = (((0f * 0f) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e38, select(1f, _e43, (0f < (abs(_e38) + abs(_e43))))));
+    let _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
+    let _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e26, select(1f, _e29, (0f < (abs(_e26) + abs(_e29))))));
 }
 
 // hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
@@ -115,13 +115,13 @@ fn fresnel(cos_i: f32, eta: f32, inv_eta: f32) -> f32 {
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-fn fibre_path(h: f32, c2_: f32, inv_eta_1: f32, c3_: f32, eta_1: f32) -> FibrePath {
+fn fibre_path(h: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, eta: f32) -> FibrePath {
     let _e8 = min(max(h, -(1f)), 1f);
-    let _e11 = (((_e8 * c2_) * inv_eta_1) * c3_);
+    let _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
     let _e16 = sqrt(max((1f - (_e11 * _e11)), 0f));
     let _e20 = sqrt(max((1f - (_e8 * _e8)), 0f));
-    let _e22 = fresnel((c2_ * _e20), eta_1, inv_eta_1);
-    return FibrePath(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * c3_), _e22);
+    let _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
+    return FibrePath(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * inv_cos_theta_t), _e22);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
@@ -154,27 +154,29 @@ fn trimmed_logistics(dphi_r: f32, dphi_tt: f32, dphi_trt: f32, logistic_inv_scal
 }
 
 // hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature
-fn far_field_node(r_in: vec3<f32>, tt_in: vec3<f32>, trt_in: vec3<f32>, residual_in: vec3<f32>, h_1: f32, weight: f32, c0_: f32, inv_eta_2: f32, c2_1: f32, eta_2: f32, sigma_a: vec3<f32>, c7_: f32, logistic_inv_scale_1: f32, logistic_norm_1: f32) -> FarFieldNode {
-    let _e26 = (c0_ * inv_eta_2);
-    let _e34 = fibre_path(h_1, c2_1, inv_eta_2, (1f / sqrt(max((1f - (_e26 * _e26)), 0f))), eta_2);
+fn far_field_node(r_in: vec3<f32>, tt_in: vec3<f32>, trt_in: vec3<f32>, residual_in: vec3<f32>, h: f32, weight: f32, sin_theta_o: f32, inv_eta: f32, cos_theta_o: f32, eta: f32, sigma_a: vec3<f32>, phi: f32, logistic_inv_scale: f32, logistic_norm: f32) -> FarFieldNode {
+    let _e26 = (sin_theta_o * inv_eta);
+    let cos_theta_t = sqrt(max((1f - (_e26 * _e26)), 0f));
+    let inv_cos_theta_t = (1f / cos_theta_t);
+    let _e34 = fibre_path(h, cos_theta_o, inv_eta, inv_cos_theta_t, eta);
     let _e43 = attenuations(_e34.fresnel, exp((-(sigma_a.x) * _e34.segment_length)));
     let _e52 = attenuations(_e34.fresnel, exp((-(sigma_a.y) * _e34.segment_length)));
     let _e61 = attenuations(_e34.fresnel, exp((-(sigma_a.z) * _e34.segment_length)));
     let _e66 = exit_angle(0f, _e34.gamma_o, _e34.gamma_t);
-    let _e67 = (c7_ - _e66);
+    let _e67 = (phi - _e66);
     let _e76 = exit_angle(1f, _e34.gamma_o, _e34.gamma_t);
-    let _e77 = (c7_ - _e76);
+    let _e77 = (phi - _e76);
     let _e84 = exit_angle(2f, _e34.gamma_o, _e34.gamma_t);
-    let _e85 = (c7_ - _e84);
-    let _e91 = trimmed_logistics((_e67 - (TWO_PI * floor(((_e67 + PI) * INV_TWO_PI)))), (_e77 - (TWO_PI * floor(((_e77 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), logistic_inv_scale_1, logistic_norm_1);
+    let _e85 = (phi - _e84);
+    let _e91 = trimmed_logistics((_e67 - (TWO_PI * floor(((_e67 + PI) * INV_TWO_PI)))), (_e77 - (TWO_PI * floor(((_e77 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
     return FarFieldNode(vec3<f32>((r_in.x + (weight * (_e43.r * _e91.r))), (r_in.y + (weight * (_e52.r * _e91.r))), (r_in.z + (weight * (_e61.r * _e91.r)))), vec3<f32>((tt_in.x + (weight * (_e43.tt * _e91.tt))), (tt_in.y + (weight * (_e52.tt * _e91.tt))), (tt_in.z + (weight * (_e61.tt * _e91.tt)))), vec3<f32>((trt_in.x + (weight * (_e43.trt * _e91.trt))), (trt_in.y + (weight * (_e52.trt * _e91.trt))), (trt_in.z + (weight * (_e61.trt * _e91.trt)))), vec3<f32>((residual_in.x + (weight * (_e43.residual * INV_TWO_PI))), (residual_in.y + (weight * (_e52.residual * INV_TWO_PI))), (residual_in.z + (weight * (_e61.residual * INV_TWO_PI)))));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
-fn deon_lobe(sin_i: f32, cos_i_1: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32, lobe_norm_r: f32) -> f32 {
-    let _e7 = (cos_i_1 * cos_o);
+fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32, lobe_norm_r: f32) -> f32 {
+    let _e7 = (cos_i * cos_o);
     let _e9 = (_e7 - (sin_i * sin_o));
-    let _e12 = ((sin_i * cos_o) + (cos_i_1 * sin_o));
+    let _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
     let _e22 = max((_e7 * inv_variance_r), 0f);
     let _e27 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
     let _e28 = (_e27 * _e27);
@@ -194,6 +196,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     var k: u32 = 0u;
 
     let _e30 = fibre_angles(wi, wo);
+    let phi = -(_e30.phi);
     r = vec3<f32>(0f, 0f, 0f);
     tt = vec3<f32>(0f, 0f, 0f);
     trt = vec3<f32>(0f, 0f, 0f);
@@ -209,7 +212,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         let _e54 = tt;
         let _e55 = trt;
         let _e56 = residual;
-        let _e59 = far_field_node(_e53, _e54, _e55, _e56, FAR_FIELD_OFFSETS[_e51].h, FAR_FIELD_OFFSETS[_e51].weight, _e30.sin_theta_o, uniforms.inv_eta, _e30.cos_theta_o, uniforms.eta, uniforms.sigma_a, -(_e30.phi), uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        let _e59 = far_field_node(_e53, _e54, _e55, _e56, FAR_FIELD_OFFSETS[_e51].h, FAR_FIELD_OFFSETS[_e51].weight, _e30.sin_theta_o, uniforms.inv_eta, _e30.cos_theta_o, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
         r = _e59.r;
         tt = _e59.tt;
         trt = _e59.trt;

@@ -85,9 +85,9 @@ layout(std430, binding = 1) buffer type_5_block_1Compute { float _group_0_bindin
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
 FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
-    float _e38 = (((1.0 * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0.0 * ((wi_in.z * 0.0) - (0.0 * wo_in.z)))) + (0.0 * ((0.0 * wo_in.y) - (wi_in.y * 0.0))));
-    float _e43 = (((0.0 * 0.0) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
+    float _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
+    float _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e26, ((0.0 < (abs(_e26) + abs(_e29))) ? _e29 : 1.0)));
 }
 
 // hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
@@ -105,13 +105,13 @@ float fresnel(float cos_i, float eta, float inv_eta) {
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-FibrePath fibre_path(float h_in, float c0_, float inv_eta_1, float c2_, float eta_1) {
+FibrePath fibre_path(float h_in, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float eta) {
     float _e8 = min(max(h_in, -(1.0)), 1.0);
-    float _e11 = (((_e8 * c0_) * inv_eta_1) * c2_);
+    float _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
     float _e16 = sqrt(max((1.0 - (_e11 * _e11)), 0.0));
     float _e20 = sqrt(max((1.0 - (_e8 * _e8)), 0.0));
-    float _e22 = fresnel((c0_ * _e20), eta_1, inv_eta_1);
-    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * c2_), _e22);
+    float _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
+    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * inv_cos_theta_t), _e22);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
@@ -144,10 +144,10 @@ TrimmedLogistics trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, 
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
-float deon_lobe(float sin_i, float cos_i_1, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
-    float _e7 = (cos_i_1 * cos_o);
+float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
+    float _e7 = (cos_i * cos_o);
     float _e9 = (_e7 - (sin_i * sin_o));
-    float _e12 = ((sin_i * cos_o) + (cos_i_1 * sin_o));
+    float _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
     float _e22 = max((_e7 * inv_variance_r), 0.0);
     float _e27 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
     float _e28 = (_e27 * _e27);
@@ -161,18 +161,20 @@ float deon_lobe(float sin_i, float cos_i_1, float sin_o, float cos_o, float inv_
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo, float h) {
     FibreAngles _e30 = fibre_angles(wi, wo);
-    float _e36 = -(_e30.phi);
+    float phi = -(_e30.phi);
     float _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
-    FibrePath _e45 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, (1.0 / sqrt(max((1.0 - (_e37 * _e37)), 0.0))), uniforms.eta);
+    float cos_theta_t = sqrt(max((1.0 - (_e37 * _e37)), 0.0));
+    float inv_cos_theta_t = (1.0 / cos_theta_t);
+    FibrePath _e45 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, uniforms.eta);
     Attenuations _e53 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.x) * _e45.segment_length)));
     Attenuations _e61 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.y) * _e45.segment_length)));
     Attenuations _e69 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.z) * _e45.segment_length)));
     float _e74 = exit_angle(0.0, _e45.gamma_o, _e45.gamma_t);
-    float _e75 = (_e36 - _e74);
+    float _e75 = (phi - _e74);
     float _e84 = exit_angle(1.0, _e45.gamma_o, _e45.gamma_t);
-    float _e85 = (_e36 - _e84);
+    float _e85 = (phi - _e84);
     float _e92 = exit_angle(2.0, _e45.gamma_o, _e45.gamma_t);
-    float _e93 = (_e36 - _e92);
+    float _e93 = (phi - _e92);
     TrimmedLogistics _e99 = trimmed_logistics((_e75 - (TWO_PI * floor(((_e75 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), (_e93 - (TWO_PI * floor(((_e93 + PI) * INV_TWO_PI)))), uniforms.logistic_inv_scale, uniforms.logistic_norm);
     float _e115 = -(uniforms.sin_2_alpha);
     float _e123 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e115)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) - (_e30.sin_theta_o * _e115))), uniforms.inv_variance_r, uniforms.lobe_norm_r);

@@ -82,9 +82,9 @@ const BESSEL_I0_FAR: array<f32, 9> = array<f32, 9>(0.3989423f, 0.01328592f, 0.00
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
 fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
-    let _e38 = (((1f * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0f * ((wi_in.z * 0f) - (0f * wo_in.z)))) + (0f * ((0f * wo_in.y) - (wi_in.y * 0f))));
-    let _e43 = (((0f * 0f) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e38, select(1f, _e43, (0f < (abs(_e38) + abs(_e43))))));
+    let _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
+    let _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e26, select(1f, _e29, (0f < (abs(_e26) + abs(_e29))))));
 }
 
 // hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
@@ -102,13 +102,13 @@ fn fresnel(cos_i: f32, eta: f32, inv_eta: f32) -> f32 {
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-fn fibre_path(h_in: f32, c0_: f32, inv_eta_1: f32, c2_: f32, eta_1: f32) -> FibrePath {
+fn fibre_path(h_in: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, eta: f32) -> FibrePath {
     let _e8 = min(max(h_in, -(1f)), 1f);
-    let _e11 = (((_e8 * c0_) * inv_eta_1) * c2_);
+    let _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
     let _e16 = sqrt(max((1f - (_e11 * _e11)), 0f));
     let _e20 = sqrt(max((1f - (_e8 * _e8)), 0f));
-    let _e22 = fresnel((c0_ * _e20), eta_1, inv_eta_1);
-    return FibrePath(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * c2_), _e22);
+    let _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
+    return FibrePath(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * inv_cos_theta_t), _e22);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
@@ -141,10 +141,10 @@ fn trimmed_logistics(dphi_r: f32, dphi_tt: f32, dphi_trt: f32, logistic_inv_scal
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
-fn deon_lobe(sin_i: f32, cos_i_1: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32, lobe_norm_r: f32) -> f32 {
-    let _e7 = (cos_i_1 * cos_o);
+fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32, lobe_norm_r: f32) -> f32 {
+    let _e7 = (cos_i * cos_o);
     let _e9 = (_e7 - (sin_i * sin_o));
-    let _e12 = ((sin_i * cos_o) + (cos_i_1 * sin_o));
+    let _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
     let _e22 = max((_e7 * inv_variance_r), 0f);
     let _e27 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
     let _e28 = (_e27 * _e27);
@@ -158,18 +158,20 @@ fn deon_lobe(sin_i: f32, cos_i_1: f32, sin_o: f32, cos_o: f32, inv_variance_r: f
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>, h: f32) -> vec3<f32> {
     let _e30 = fibre_angles(wi, wo);
-    let _e36 = -(_e30.phi);
+    let phi = -(_e30.phi);
     let _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
-    let _e45 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, (1f / sqrt(max((1f - (_e37 * _e37)), 0f))), uniforms.eta);
+    let cos_theta_t = sqrt(max((1f - (_e37 * _e37)), 0f));
+    let inv_cos_theta_t = (1f / cos_theta_t);
+    let _e45 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, uniforms.eta);
     let _e53 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.x) * _e45.segment_length)));
     let _e61 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.y) * _e45.segment_length)));
     let _e69 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.z) * _e45.segment_length)));
     let _e74 = exit_angle(0f, _e45.gamma_o, _e45.gamma_t);
-    let _e75 = (_e36 - _e74);
+    let _e75 = (phi - _e74);
     let _e84 = exit_angle(1f, _e45.gamma_o, _e45.gamma_t);
-    let _e85 = (_e36 - _e84);
+    let _e85 = (phi - _e84);
     let _e92 = exit_angle(2f, _e45.gamma_o, _e45.gamma_t);
-    let _e93 = (_e36 - _e92);
+    let _e93 = (phi - _e92);
     let _e99 = trimmed_logistics((_e75 - (TWO_PI * floor(((_e75 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), (_e93 - (TWO_PI * floor(((_e93 + PI) * INV_TWO_PI)))), uniforms.logistic_inv_scale, uniforms.logistic_norm);
     let _e115 = -(uniforms.sin_2_alpha);
     let _e123 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e115)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) - (_e30.sin_theta_o * _e115))), uniforms.inv_variance_r, uniforms.lobe_norm_r);

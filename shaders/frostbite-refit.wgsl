@@ -44,44 +44,58 @@ struct FibreLocalDirections {
     wo: vec3<f32>,
 }
 
+// theta_o at the first texel of lut0_frostbite_tt
+const LUT0_FROSTBITE_TT_THETA_O_MIN: f32 = 0f;
+// 1 / (1.3962634 - 0), theta_o to [0, 1] across lut0_frostbite_tt's texels
+const LUT0_FROSTBITE_TT_THETA_O_SCALE: f32 = 0.71619725f;
+// beta_n at the first texel of lut0_frostbite_tt
+const LUT0_FROSTBITE_TT_BETA_N_MIN: f32 = 0.1f;
+// 1 / (1 - 0.1), beta_n to [0, 1] across lut0_frostbite_tt's texels
+const LUT0_FROSTBITE_TT_BETA_N_SCALE: f32 = 1.1111112f;
 const uniforms: FrostbiteUniforms = FrostbiteUniforms(0.27830222f, 0.13915111f, 0.55660444f, 0.06979899f, -0.03490481f, -0.10467191f, 1.55f, vec3<f32>(0.5447f, 0.9061f, 1.781f), 0.3f, 1f);
 // sqrt(2 pi), the normalisation of the Gaussian
 const SQRT_TWO_PI: f32 = 2.5066283f;
 // pi
 const PI: f32 = 3.1415927f;
+// h_TT whose attenuation is closest to the h-average (hairmath's refit, eta 1.55)
+const REFIT_TT_OFFSET: f32 = 0.6002789f;
 // 1e-30, the floor that keeps a denominator, a length or a width positive
 const TINY: f32 = 0.000000000000000000000000000001f;
+// a, b of Karis' TRT distribution exp(a cos(phi) + b) (Karis 2016)
+const KARIS_D_TRT: array<f32, 2> = array<f32, 2>(17f, -16.78f);
+// h_TRT whose attenuation is closest to the h-average (hairmath's refit, eta 1.55)
+const REFIT_TRT_OFFSET: f32 = 0.71930504f;
 
 // lut0_frostbite_tt_texels: 9 x 10 texels (theta_o in [0, 1.3962634] along x, beta_n in [0.1, 1] along y); x, y = a, b; rgba32float, read with textureLoad
 @group(1) @binding(0) 
 var lut0_frostbite_tt_texels: texture_2d<f32>;
 
-// table 0 (frostbite_tt): 2 axes, 2 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into
+// table 0 (frostbite_tt): 2 axes, 2 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into: per axis t = clamp((x - MIN) * SCALE, 0, 1) * (n - 1) over its n texels
 fn lut0_frostbite_tt(theta_o: f32, beta_n: f32) -> vec4<f32> {
-    let _e10 = (min(max(((theta_o - 0f) * 0.71619725f), 0f), 1f) * 8f);
-    let _e13 = min(floor(_e10), 7f);
-    let _e14 = (_e10 - _e13);
-    let _e15 = (1f - _e14);
-    let _e19 = clamp(i32(_e13), 0i, 7i);
-    let _e21 = (_e19 + 1i);
-    let _e29 = (min(max(((beta_n - 0.1f) * 1.1111112f), 0f), 1f) * 9f);
-    let _e31 = min(floor(_e29), 8f);
-    let _e32 = (_e29 - _e31);
-    let _e33 = (1f - _e32);
-    let _e36 = clamp(i32(_e31), 0i, 8i);
-    let _e37 = (_e36 + 1i);
-    let _e43 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e19, _e36), 0i);
-    let _e49 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e21, _e36), 0i);
-    let _e55 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e19, _e37), 0i);
-    let _e61 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e21, _e37), 0i);
-    return ((((vec4(0f) + (((1f * _e15) * _e33) * _e43)) + (((1f * _e14) * _e33) * _e49)) + (((1f * _e15) * _e32) * _e55)) + (((1f * _e14) * _e32) * _e61));
+    let _e11 = (min(max(((theta_o - LUT0_FROSTBITE_TT_THETA_O_MIN) * LUT0_FROSTBITE_TT_THETA_O_SCALE), 0f), 1f) * 8f);
+    let _e14 = min(floor(_e11), 7f);
+    let _e15 = (_e11 - _e14);
+    let _e16 = (1f - _e15);
+    let _e20 = clamp(i32(_e14), 0i, 7i);
+    let _e22 = (_e20 + 1i);
+    let _e30 = (min(max(((beta_n - LUT0_FROSTBITE_TT_BETA_N_MIN) * LUT0_FROSTBITE_TT_BETA_N_SCALE), 0f), 1f) * 9f);
+    let _e32 = min(floor(_e30), 8f);
+    let _e33 = (_e30 - _e32);
+    let _e34 = (1f - _e33);
+    let _e37 = clamp(i32(_e32), 0i, 8i);
+    let _e38 = (_e37 + 1i);
+    let _e42 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e20, _e37), 0i);
+    let _e46 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e22, _e37), 0i);
+    let _e51 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e20, _e38), 0i);
+    let _e56 = textureLoad(lut0_frostbite_tt_texels, vec2<i32>(_e22, _e38), 0i);
+    return (((((_e16 * _e34) * _e42) + ((_e15 * _e34) * _e46)) + ((_e16 * _e33) * _e51)) + ((_e15 * _e33) * _e56));
 }
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
 fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
-    let _e38 = (((1f * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0f * ((wi_in.z * 0f) - (0f * wo_in.z)))) + (0f * ((0f * wo_in.y) - (wi_in.y * 0f))));
-    let _e43 = (((0f * 0f) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e38, select(1f, _e43, (0f < (abs(_e38) + abs(_e43))))));
+    let _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
+    let _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e26, select(1f, _e29, (0f < (abs(_e26) + abs(_e29))))));
 }
 
 // hairmath::lobe::gaussian::gaussian_lobe -- Marschner et al. 2003, eq. 6
@@ -106,27 +120,27 @@ fn tt_gaussian(phi: f32, a: f32, b: f32) -> f32 {
 }
 
 // hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
-fn fresnel(cos_i_1: f32, eta_1: f32, inv_eta: f32) -> f32 {
-    let _e11 = sqrt(max((1f - ((1f - (cos_i_1 * cos_i_1)) * (inv_eta * inv_eta))), 0f));
-    let _e12 = (eta_1 * cos_i_1);
+fn fresnel(cos_i: f32, eta: f32, inv_eta: f32) -> f32 {
+    let _e11 = sqrt(max((1f - ((1f - (cos_i * cos_i)) * (inv_eta * inv_eta))), 0f));
+    let _e12 = (eta * cos_i);
     let _e13 = (_e12 - _e11);
     let _e14 = (_e12 + _e11);
-    let _e15 = (eta_1 * _e11);
-    let _e16 = (cos_i_1 - _e15);
-    let _e17 = (cos_i_1 + _e15);
+    let _e15 = (eta * _e11);
+    let _e16 = (cos_i - _e15);
+    let _e17 = (cos_i + _e15);
     let _e18 = (_e14 * _e14);
     let _e19 = (_e17 * _e17);
     return min(((((_e13 * _e13) * _e19) + ((_e16 * _e16) * _e18)) / ((2f * _e18) * _e19)), 1f);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-fn fibre_path(h: f32, c0_: f32, c1_: f32, c2_: f32, eta_2: f32) -> FibrePath {
+fn fibre_path(h: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, eta: f32) -> FibrePath {
     let _e8 = min(max(h, -(1f)), 1f);
-    let _e11 = (((_e8 * c0_) * c1_) * c2_);
+    let _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
     let _e16 = sqrt(max((1f - (_e11 * _e11)), 0f));
     let _e20 = sqrt(max((1f - (_e8 * _e8)), 0f));
-    let _e22 = fresnel((c0_ * _e20), eta_2, c1_);
-    return FibrePath(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * c2_), _e22);
+    let _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
+    return FibrePath(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * inv_cos_theta_t), _e22);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
@@ -141,31 +155,36 @@ fn attenuations(fresnel_in: f32, transmittance: f32) -> Attenuations {
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e23 = fibre_angles(wi, wo);
-    let _e28 = (_e23.sin_theta_i + _e23.sin_theta_o);
-    let _e42 = gaussian_lobe(uniforms.width_r, (_e28 - uniforms.shift_r));
-    let _e51 = fresnel_schlick(sqrt(min(max((0.5f + (0.5f * (((wi.x * wo.x) + (wi.y * wo.y)) + (wi.z * wo.z)))), 0f), 1f)), uniforms.eta);
-    let _e53 = (_e42 * ((0.25f * max(cos((0.5f * _e23.phi)), 0f)) * _e51));
-    let _e55 = gaussian_lobe(uniforms.width_tt, (_e28 - uniforms.shift_tt));
-    let _e56 = lut0_frostbite_tt(abs(atan2(_e23.sin_theta_o, _e23.cos_theta_o)), uniforms.beta_n);
+    let sum_of_sines = (_e23.sin_theta_i + _e23.sin_theta_o);
+    let abs_theta_o = abs(atan2(_e23.sin_theta_o, _e23.cos_theta_o));
+    let cos_phi = cos(_e23.phi);
+    let cos_half_phi = max(cos((0.5f * _e23.phi)), 0f);
+    let v_dot_l = (((wi.x * wo.x) + (wi.y * wo.y)) + (wi.z * wo.z));
+    let _e42 = gaussian_lobe(uniforms.width_r, (sum_of_sines - uniforms.shift_r));
+    let _e51 = fresnel_schlick(sqrt(min(max((0.5f + (0.5f * v_dot_l)), 0f), 1f)), uniforms.eta);
+    let _e53 = (_e42 * ((0.25f * cos_half_phi) * _e51));
+    let _e55 = gaussian_lobe(uniforms.width_tt, (sum_of_sines - uniforms.shift_tt));
+    let _e56 = lut0_frostbite_tt(abs_theta_o, uniforms.beta_n);
     let _e59 = tt_gaussian(_e23.phi, _e56.x, _e56.y);
     let _e60 = (_e55 * _e59);
-    let _e61 = (1f / uniforms.eta);
-    let _e62 = (_e23.sin_theta_o * _e61);
-    let _e67 = (1f / sqrt(max((1f - (_e62 * _e62)), 0f)));
-    let _e69 = fibre_path(0.6002789f, _e23.cos_theta_o, _e61, _e67, uniforms.eta);
+    let inv_eta = (1f / uniforms.eta);
+    let _e62 = (_e23.sin_theta_o * inv_eta);
+    let cos_theta_t = sqrt(max((1f - (_e62 * _e62)), 0f));
+    let inv_cos_theta_t = (1f / cos_theta_t);
+    let _e69 = fibre_path(REFIT_TT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, uniforms.eta);
     let _e72 = -(uniforms.sigma_a.x);
     let _e75 = attenuations(_e69.fresnel, exp((_e72 * _e69.segment_length)));
     let _e77 = -(uniforms.sigma_a.y);
     let _e80 = attenuations(_e69.fresnel, exp((_e77 * _e69.segment_length)));
     let _e82 = -(uniforms.sigma_a.z);
     let _e85 = attenuations(_e69.fresnel, exp((_e82 * _e69.segment_length)));
-    let _e91 = gaussian_lobe(uniforms.width_trt, (_e28 - uniforms.shift_trt));
-    let _e99 = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((17f * cos(_e23.phi)) + -16.78f)))));
-    let _e101 = fibre_path(0.71930504f, _e23.cos_theta_o, _e61, _e67, uniforms.eta);
-    let _e106 = attenuations(_e101.fresnel, exp((_e72 * _e101.segment_length)));
-    let _e110 = attenuations(_e101.fresnel, exp((_e77 * _e101.segment_length)));
-    let _e114 = attenuations(_e101.fresnel, exp((_e82 * _e101.segment_length)));
-    return vec3<f32>(((_e53 + (_e60 * _e75.tt)) + (_e99 * _e106.trt)), ((_e53 + (_e60 * _e80.tt)) + (_e99 * _e110.trt)), ((_e53 + (_e60 * _e85.tt)) + (_e99 * _e114.trt)));
+    let _e91 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - uniforms.shift_trt));
+    let _e101 = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
+    let _e103 = fibre_path(REFIT_TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, uniforms.eta);
+    let _e108 = attenuations(_e103.fresnel, exp((_e72 * _e103.segment_length)));
+    let _e112 = attenuations(_e103.fresnel, exp((_e77 * _e103.segment_length)));
+    let _e116 = attenuations(_e103.fresnel, exp((_e82 * _e103.segment_length)));
+    return vec3<f32>(((_e53 + (_e60 * _e75.tt)) + (_e101 * _e108.trt)), ((_e53 + (_e60 * _e80.tt)) + (_e101 * _e112.trt)), ((_e53 + (_e60 * _e85.tt)) + (_e101 * _e116.trt)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

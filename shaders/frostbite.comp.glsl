@@ -43,48 +43,62 @@ struct FibreLocalDirections {
     vec3 wi;
     vec3 wo;
 };
+// theta_o at the first texel of lut0_frostbite_tt
+const float LUT0_FROSTBITE_TT_THETA_O_MIN = 0.0;
+// 1 / (1.3962634 - 0), theta_o to [0, 1] across lut0_frostbite_tt's texels
+const float LUT0_FROSTBITE_TT_THETA_O_SCALE = 0.71619725;
+// beta_n at the first texel of lut0_frostbite_tt
+const float LUT0_FROSTBITE_TT_BETA_N_MIN = 0.1;
+// 1 / (1 - 0.1), beta_n to [0, 1] across lut0_frostbite_tt's texels
+const float LUT0_FROSTBITE_TT_BETA_N_SCALE = 1.1111112;
 const FrostbiteUniforms uniforms = FrostbiteUniforms(0.27830222, 0.13915111, 0.55660444, 0.06979899, -0.03490481, -0.10467191, 1.55, vec3(0.5447, 0.9061, 1.781), 0.3, 1.0);
 // sqrt(2 pi), the normalisation of the Gaussian
 const float SQRT_TWO_PI = 2.5066283;
 // pi
 const float PI = 3.1415927;
+// h_TT = 0, the offset of Frostbite's TT attenuation (Tafuri 2019, slide 20)
+const float TT_OFFSET = 0.0;
 // 1e-30, the floor that keeps a denominator, a length or a width positive
 const float TINY = 1e-30;
+// a, b of Karis' TRT distribution exp(a cos(phi) + b) (Karis 2016)
+const float KARIS_D_TRT[2] = float[2](17.0, -16.78);
+// h_TRT = sqrt(3)/2, the offset of Frostbite's TRT attenuation (slide 21)
+const float TRT_OFFSET = 0.8660254;
 
 // lut0_frostbite_tt_texels: 9 x 10 texels (theta_o in [0, 1.3962634] along x, beta_n in [0.1, 1] along y); x, y = a, b; rgba32float, read with textureLoad
 layout(binding = 2) uniform sampler2D _group_1_binding_0_cs;
 
-layout(std430, binding = 0) readonly buffer type_6_block_0Compute { float _group_0_binding_0_cs[]; };
+layout(std430, binding = 0) readonly buffer type_7_block_0Compute { float _group_0_binding_0_cs[]; };
 
-layout(std430, binding = 1) buffer type_6_block_1Compute { float _group_0_binding_1_cs[]; };
+layout(std430, binding = 1) buffer type_7_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
-// table 0 (frostbite_tt): 2 axes, 2 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into
+// table 0 (frostbite_tt): 2 axes, 2 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into: per axis t = clamp((x - MIN) * SCALE, 0, 1) * (n - 1) over its n texels
 vec4 lut0_frostbite_tt(float theta_o, float beta_n) {
-    float _e10 = (min(max(((theta_o - 0.0) * 0.71619725), 0.0), 1.0) * 8.0);
-    float _e13 = min(floor(_e10), 7.0);
-    float _e14 = (_e10 - _e13);
-    float _e15 = (1.0 - _e14);
-    int _e19 = min(max(int(_e13), 0), 7);
-    int _e21 = (_e19 + 1);
-    float _e29 = (min(max(((beta_n - 0.1) * 1.1111112), 0.0), 1.0) * 9.0);
-    float _e31 = min(floor(_e29), 8.0);
-    float _e32 = (_e29 - _e31);
-    float _e33 = (1.0 - _e32);
-    int _e36 = min(max(int(_e31), 0), 8);
-    int _e37 = (_e36 + 1);
-    vec4 _e43 = texelFetch(_group_1_binding_0_cs, ivec2(_e19, _e36), 0);
-    vec4 _e49 = texelFetch(_group_1_binding_0_cs, ivec2(_e21, _e36), 0);
-    vec4 _e55 = texelFetch(_group_1_binding_0_cs, ivec2(_e19, _e37), 0);
-    vec4 _e61 = texelFetch(_group_1_binding_0_cs, ivec2(_e21, _e37), 0);
-    return ((((vec4(0.0) + (((1.0 * _e15) * _e33) * _e43)) + (((1.0 * _e14) * _e33) * _e49)) + (((1.0 * _e15) * _e32) * _e55)) + (((1.0 * _e14) * _e32) * _e61));
+    float _e11 = (min(max(((theta_o - LUT0_FROSTBITE_TT_THETA_O_MIN) * LUT0_FROSTBITE_TT_THETA_O_SCALE), 0.0), 1.0) * 8.0);
+    float _e14 = min(floor(_e11), 7.0);
+    float _e15 = (_e11 - _e14);
+    float _e16 = (1.0 - _e15);
+    int _e20 = min(max(int(_e14), 0), 7);
+    int _e22 = (_e20 + 1);
+    float _e30 = (min(max(((beta_n - LUT0_FROSTBITE_TT_BETA_N_MIN) * LUT0_FROSTBITE_TT_BETA_N_SCALE), 0.0), 1.0) * 9.0);
+    float _e32 = min(floor(_e30), 8.0);
+    float _e33 = (_e30 - _e32);
+    float _e34 = (1.0 - _e33);
+    int _e37 = min(max(int(_e32), 0), 8);
+    int _e38 = (_e37 + 1);
+    vec4 _e42 = texelFetch(_group_1_binding_0_cs, ivec2(_e20, _e37), 0);
+    vec4 _e46 = texelFetch(_group_1_binding_0_cs, ivec2(_e22, _e37), 0);
+    vec4 _e51 = texelFetch(_group_1_binding_0_cs, ivec2(_e20, _e38), 0);
+    vec4 _e56 = texelFetch(_group_1_binding_0_cs, ivec2(_e22, _e38), 0);
+    return (((((_e16 * _e34) * _e42) + ((_e15 * _e34) * _e46)) + ((_e16 * _e33) * _e51)) + ((_e15 * _e33) * _e56));
 }
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
 FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
-    float _e38 = (((1.0 * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0.0 * ((wi_in.z * 0.0) - (0.0 * wo_in.z)))) + (0.0 * ((0.0 * wo_in.y) - (wi_in.y * 0.0))));
-    float _e43 = (((0.0 * 0.0) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
+    float _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
+    float _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e26, ((0.0 < (abs(_e26) + abs(_e29))) ? _e29 : 1.0)));
 }
 
 // hairmath::lobe::gaussian::gaussian_lobe -- Marschner et al. 2003, eq. 6
@@ -109,27 +123,27 @@ float tt_gaussian(float phi, float a, float b) {
 }
 
 // hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
-float fresnel(float cos_i_1, float eta_1, float inv_eta) {
-    float _e11 = sqrt(max((1.0 - ((1.0 - (cos_i_1 * cos_i_1)) * (inv_eta * inv_eta))), 0.0));
-    float _e12 = (eta_1 * cos_i_1);
+float fresnel(float cos_i, float eta, float inv_eta) {
+    float _e11 = sqrt(max((1.0 - ((1.0 - (cos_i * cos_i)) * (inv_eta * inv_eta))), 0.0));
+    float _e12 = (eta * cos_i);
     float _e13 = (_e12 - _e11);
     float _e14 = (_e12 + _e11);
-    float _e15 = (eta_1 * _e11);
-    float _e16 = (cos_i_1 - _e15);
-    float _e17 = (cos_i_1 + _e15);
+    float _e15 = (eta * _e11);
+    float _e16 = (cos_i - _e15);
+    float _e17 = (cos_i + _e15);
     float _e18 = (_e14 * _e14);
     float _e19 = (_e17 * _e17);
     return min(((((_e13 * _e13) * _e19) + ((_e16 * _e16) * _e18)) / ((2.0 * _e18) * _e19)), 1.0);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-FibrePath fibre_path(float h, float c0_, float c1_, float c2_, float eta_2) {
+FibrePath fibre_path(float h, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float eta) {
     float _e8 = min(max(h, -(1.0)), 1.0);
-    float _e11 = (((_e8 * c0_) * c1_) * c2_);
+    float _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
     float _e16 = sqrt(max((1.0 - (_e11 * _e11)), 0.0));
     float _e20 = sqrt(max((1.0 - (_e8 * _e8)), 0.0));
-    float _e22 = fresnel((c0_ * _e20), eta_2, c1_);
-    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * c2_), _e22);
+    float _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
+    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * inv_cos_theta_t), _e22);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
@@ -144,31 +158,36 @@ Attenuations attenuations(float fresnel_in, float transmittance) {
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     FibreAngles _e23 = fibre_angles(wi, wo);
-    float _e28 = (_e23.sin_theta_i + _e23.sin_theta_o);
-    float _e42 = gaussian_lobe(uniforms.width_r, (_e28 - uniforms.shift_r));
-    float _e51 = fresnel_schlick(sqrt(min(max((0.5 + (0.5 * (((wi.x * wo.x) + (wi.y * wo.y)) + (wi.z * wo.z)))), 0.0), 1.0)), uniforms.eta);
-    float _e53 = (_e42 * ((0.25 * max(cos((0.5 * _e23.phi)), 0.0)) * _e51));
-    float _e55 = gaussian_lobe(uniforms.width_tt, (_e28 - uniforms.shift_tt));
-    vec4 _e56 = lut0_frostbite_tt(abs(atan(_e23.sin_theta_o, _e23.cos_theta_o)), uniforms.beta_n);
+    float sum_of_sines = (_e23.sin_theta_i + _e23.sin_theta_o);
+    float abs_theta_o = abs(atan(_e23.sin_theta_o, _e23.cos_theta_o));
+    float cos_phi = cos(_e23.phi);
+    float cos_half_phi = max(cos((0.5 * _e23.phi)), 0.0);
+    float v_dot_l = (((wi.x * wo.x) + (wi.y * wo.y)) + (wi.z * wo.z));
+    float _e42 = gaussian_lobe(uniforms.width_r, (sum_of_sines - uniforms.shift_r));
+    float _e51 = fresnel_schlick(sqrt(min(max((0.5 + (0.5 * v_dot_l)), 0.0), 1.0)), uniforms.eta);
+    float _e53 = (_e42 * ((0.25 * cos_half_phi) * _e51));
+    float _e55 = gaussian_lobe(uniforms.width_tt, (sum_of_sines - uniforms.shift_tt));
+    vec4 _e56 = lut0_frostbite_tt(abs_theta_o, uniforms.beta_n);
     float _e59 = tt_gaussian(_e23.phi, _e56.x, _e56.y);
     float _e60 = (_e55 * _e59);
-    float _e61 = (1.0 / uniforms.eta);
-    float _e62 = (_e23.sin_theta_o * _e61);
-    float _e67 = (1.0 / sqrt(max((1.0 - (_e62 * _e62)), 0.0)));
-    FibrePath _e68 = fibre_path(0.0, _e23.cos_theta_o, _e61, _e67, uniforms.eta);
-    float _e71 = -(uniforms.sigma_a.x);
-    Attenuations _e74 = attenuations(_e68.fresnel, exp((_e71 * _e68.segment_length)));
-    float _e76 = -(uniforms.sigma_a.y);
-    Attenuations _e79 = attenuations(_e68.fresnel, exp((_e76 * _e68.segment_length)));
-    float _e81 = -(uniforms.sigma_a.z);
-    Attenuations _e84 = attenuations(_e68.fresnel, exp((_e81 * _e68.segment_length)));
-    float _e90 = gaussian_lobe(uniforms.width_trt, (_e28 - uniforms.shift_trt));
-    float _e98 = (_e90 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((17.0 * cos(_e23.phi)) + -16.78)))));
-    FibrePath _e100 = fibre_path(0.8660254, _e23.cos_theta_o, _e61, _e67, uniforms.eta);
-    Attenuations _e105 = attenuations(_e100.fresnel, exp((_e71 * _e100.segment_length)));
-    Attenuations _e109 = attenuations(_e100.fresnel, exp((_e76 * _e100.segment_length)));
-    Attenuations _e113 = attenuations(_e100.fresnel, exp((_e81 * _e100.segment_length)));
-    return vec3(((_e53 + (_e60 * _e74.tt)) + (_e98 * _e105.trt)), ((_e53 + (_e60 * _e79.tt)) + (_e98 * _e109.trt)), ((_e53 + (_e60 * _e84.tt)) + (_e98 * _e113.trt)));
+    float inv_eta = (1.0 / uniforms.eta);
+    float _e62 = (_e23.sin_theta_o * inv_eta);
+    float cos_theta_t = sqrt(max((1.0 - (_e62 * _e62)), 0.0));
+    float inv_cos_theta_t = (1.0 / cos_theta_t);
+    FibrePath _e69 = fibre_path(TT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, uniforms.eta);
+    float _e72 = -(uniforms.sigma_a.x);
+    Attenuations _e75 = attenuations(_e69.fresnel, exp((_e72 * _e69.segment_length)));
+    float _e77 = -(uniforms.sigma_a.y);
+    Attenuations _e80 = attenuations(_e69.fresnel, exp((_e77 * _e69.segment_length)));
+    float _e82 = -(uniforms.sigma_a.z);
+    Attenuations _e85 = attenuations(_e69.fresnel, exp((_e82 * _e69.segment_length)));
+    float _e91 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - uniforms.shift_trt));
+    float _e101 = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
+    FibrePath _e103 = fibre_path(TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, uniforms.eta);
+    Attenuations _e108 = attenuations(_e103.fresnel, exp((_e72 * _e103.segment_length)));
+    Attenuations _e112 = attenuations(_e103.fresnel, exp((_e77 * _e103.segment_length)));
+    Attenuations _e116 = attenuations(_e103.fresnel, exp((_e82 * _e103.segment_length)));
+    return vec3(((_e53 + (_e60 * _e75.tt)) + (_e101 * _e108.trt)), ((_e53 + (_e60 * _e80.tt)) + (_e101 * _e112.trt)), ((_e53 + (_e60 * _e85.tt)) + (_e101 * _e116.trt)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -34,6 +34,14 @@ struct FibreLocalDirections {
     vec3 wi;
     vec3 wo;
 };
+// phi at the first texel of lut0_gerard
+const float LUT0_GERARD_PHI_MIN = 0.0;
+// 1 / (3.141592653589793 - 0), phi to [0, 1] across lut0_gerard's texels
+const float LUT0_GERARD_PHI_SCALE = 0.31830987;
+// theta_d at the first texel of lut0_gerard
+const float LUT0_GERARD_THETA_D_MIN = 0.0;
+// 1 / (1.5707963267948966 - 0), theta_d to [0, 1] across lut0_gerard's texels
+const float LUT0_GERARD_THETA_D_SCALE = 0.63661975;
 const GerardUniforms uniforms = GerardUniforms(0.76984614, 0.8167546, 0.69702667, 1.0, 1.0, 1.0, 0.034906585, -0.017453292, -0.05235988, vec3(0.5447, 0.9061, 1.781), 4.0, 5.5, 1e-12);
 // 4 pi, the solid angle of the sphere
 const float FOUR_PI = 12.566371;
@@ -48,54 +56,54 @@ layout(std430, binding = 0) readonly buffer type_6_block_0Compute { float _group
 layout(std430, binding = 1) buffer type_6_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
-// table 0 (gerard): 2 axes, 3 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into
+// table 0 (gerard): 2 axes, 3 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into: per axis t = clamp((x - MIN) * SCALE, 0, 1) * (n - 1) over its n texels
 vec4 lut0_gerard(float phi, float theta_d) {
-    float _e10 = (min(max(((phi - 0.0) * 0.31830987), 0.0), 1.0) * 127.0);
-    float _e13 = min(floor(_e10), 126.0);
-    float _e14 = (_e10 - _e13);
-    float _e15 = (1.0 - _e14);
-    int _e19 = min(max(int(_e13), 0), 126);
-    int _e21 = (_e19 + 1);
-    float _e28 = (min(max(((theta_d - 0.0) * 0.63661975), 0.0), 1.0) * 63.0);
-    float _e31 = min(floor(_e28), 62.0);
-    float _e32 = (_e28 - _e31);
-    float _e33 = (1.0 - _e32);
-    int _e36 = min(max(int(_e31), 0), 62);
-    int _e37 = (_e36 + 1);
-    vec4 _e43 = texelFetch(_group_1_binding_0_cs, ivec2(_e19, _e36), 0);
-    vec4 _e49 = texelFetch(_group_1_binding_0_cs, ivec2(_e21, _e36), 0);
-    vec4 _e55 = texelFetch(_group_1_binding_0_cs, ivec2(_e19, _e37), 0);
-    vec4 _e61 = texelFetch(_group_1_binding_0_cs, ivec2(_e21, _e37), 0);
-    return ((((vec4(0.0) + (((1.0 * _e15) * _e33) * _e43)) + (((1.0 * _e14) * _e33) * _e49)) + (((1.0 * _e15) * _e32) * _e55)) + (((1.0 * _e14) * _e32) * _e61));
+    float _e11 = (min(max(((phi - LUT0_GERARD_PHI_MIN) * LUT0_GERARD_PHI_SCALE), 0.0), 1.0) * 127.0);
+    float _e14 = min(floor(_e11), 126.0);
+    float _e15 = (_e11 - _e14);
+    float _e16 = (1.0 - _e15);
+    int _e20 = min(max(int(_e14), 0), 126);
+    int _e22 = (_e20 + 1);
+    float _e30 = (min(max(((theta_d - LUT0_GERARD_THETA_D_MIN) * LUT0_GERARD_THETA_D_SCALE), 0.0), 1.0) * 63.0);
+    float _e33 = min(floor(_e30), 62.0);
+    float _e34 = (_e30 - _e33);
+    float _e35 = (1.0 - _e34);
+    int _e38 = min(max(int(_e33), 0), 62);
+    int _e39 = (_e38 + 1);
+    vec4 _e43 = texelFetch(_group_1_binding_0_cs, ivec2(_e20, _e38), 0);
+    vec4 _e47 = texelFetch(_group_1_binding_0_cs, ivec2(_e22, _e38), 0);
+    vec4 _e52 = texelFetch(_group_1_binding_0_cs, ivec2(_e20, _e39), 0);
+    vec4 _e57 = texelFetch(_group_1_binding_0_cs, ivec2(_e22, _e39), 0);
+    return (((((_e16 * _e35) * _e43) + ((_e15 * _e35) * _e47)) + ((_e16 * _e34) * _e52)) + ((_e15 * _e34) * _e57));
 }
 
 // hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
 FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
-    float _e38 = (((1.0 * ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y))) + (0.0 * ((wi_in.z * 0.0) - (0.0 * wo_in.z)))) + (0.0 * ((0.0 * wo_in.y) - (wi_in.y * 0.0))));
-    float _e43 = (((0.0 * 0.0) + (wi_in.y * wo_in.y)) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e38, ((0.0 < (abs(_e38) + abs(_e43))) ? _e43 : 1.0)));
+    float _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
+    float _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e26, ((0.0 < (abs(_e26) + abs(_e29))) ? _e29 : 1.0)));
 }
 
 // hair_bcsdf: `hairmath eval --model gerard`, Gerard's direct lighting (eq. 4-8): Henyey-Greenstein lobes, Marschner's N_p from a 128 x 64 table times e^(-k sigma_a), S(wi, wo)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     FibreAngles _e25 = fibre_angles(wi, wo);
-    float _e31 = atan(_e25.sin_theta_i, _e25.cos_theta_i);
-    float _e32 = atan(_e25.sin_theta_o, _e25.cos_theta_o);
-    float _e35 = ((_e31 + _e32) * 0.5);
-    float _e37 = ((_e32 - _e31) * 0.5);
-    float _e38 = cos(_e37);
-    float _e41 = (_e25.cos_theta_i / max((_e38 * _e38), uniforms.min_cos2_theta_d));
-    vec4 _e44 = lut0_gerard(abs(_e25.phi), abs(_e37));
+    float theta_i = atan(_e25.sin_theta_i, _e25.cos_theta_i);
+    float theta_o = atan(_e25.sin_theta_o, _e25.cos_theta_o);
+    float theta_h = ((theta_i + theta_o) * 0.5);
+    float theta_d = ((theta_o - theta_i) * 0.5);
+    float cos_theta_d = cos(theta_d);
+    float factor = (_e25.cos_theta_i / max((cos_theta_d * cos_theta_d), uniforms.min_cos2_theta_d));
+    vec4 _e44 = lut0_gerard(abs(_e25.phi), abs(theta_d));
     float _e51 = (uniforms.g_r * uniforms.g_r);
-    float _e56 = ((1.0 + _e51) - ((2.0 * uniforms.g_r) * cos((_e35 - uniforms.alpha_r))));
-    float _e65 = (((((1.0 - _e51) / ((FOUR_PI * _e56) * sqrt(_e56))) * uniforms.lobe_scale_r) * _e44.x) * _e41);
+    float _e56 = ((1.0 + _e51) - ((2.0 * uniforms.g_r) * cos((theta_h - uniforms.alpha_r))));
+    float _e65 = (((((1.0 - _e51) / ((FOUR_PI * _e56) * sqrt(_e56))) * uniforms.lobe_scale_r) * _e44.x) * factor);
     float _e68 = (uniforms.g_tt * uniforms.g_tt);
-    float _e72 = ((1.0 + _e68) - ((2.0 * uniforms.g_tt) * cos((_e35 - uniforms.alpha_tt))));
-    float _e80 = (((((1.0 - _e68) / ((FOUR_PI * _e72) * sqrt(_e72))) * uniforms.lobe_scale_tt) * _e44.y) * _e41);
+    float _e72 = ((1.0 + _e68) - ((2.0 * uniforms.g_tt) * cos((theta_h - uniforms.alpha_tt))));
+    float _e80 = (((((1.0 - _e68) / ((FOUR_PI * _e72) * sqrt(_e72))) * uniforms.lobe_scale_tt) * _e44.y) * factor);
     float _e83 = (uniforms.g_trt * uniforms.g_trt);
-    float _e87 = ((1.0 + _e83) - ((2.0 * uniforms.g_trt) * cos((_e35 - uniforms.alpha_trt))));
-    float _e95 = (((((1.0 - _e83) / ((FOUR_PI * _e87) * sqrt(_e87))) * uniforms.lobe_scale_trt) * _e44.z) * _e41);
+    float _e87 = ((1.0 + _e83) - ((2.0 * uniforms.g_trt) * cos((theta_h - uniforms.alpha_trt))));
+    float _e95 = (((((1.0 - _e83) / ((FOUR_PI * _e87) * sqrt(_e87))) * uniforms.lobe_scale_trt) * _e44.z) * factor);
     float _e96 = -(uniforms.k_tt);
     float _e106 = -(uniforms.k_trt);
     return vec3(((_e65 + (_e80 * exp((_e96 * uniforms.sigma_a.x)))) + (_e95 * exp((_e106 * uniforms.sigma_a.x)))), ((_e65 + (_e80 * exp((_e96 * uniforms.sigma_a.y)))) + (_e95 * exp((_e106 * uniforms.sigma_a.y)))), ((_e65 + (_e80 * exp((_e96 * uniforms.sigma_a.z)))) + (_e95 * exp((_e106 * uniforms.sigma_a.z)))));

@@ -29,10 +29,10 @@ layout(std430, binding = 1) buffer type_3_block_1Compute { float _group_0_bindin
 // hair_bcsdf: `hairmath eval --model kajiya-kay`, Kajiya and Kay 1989 as the survey writes it: a diffuse k_d cos(theta_i) and one specular cone k_s cos^n(theta_i + theta_o), no cosine factor
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
-    float _e27 = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1.0);
-    float _e37 = ((_e27 * min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1.0)) - (min(max(wi.x, -1.0), 1.0) * min(max(wo.x, -1.0), 1.0)));
-    float _e47 = ((0.0 < _e37) ? exp((uniforms.exponent * log(max(_e37, TINY)))) : 0.0);
-    return vec3(((uniforms.kd.x * _e27) + (uniforms.ks.x * _e47)), ((uniforms.kd.y * _e27) + (uniforms.ks.y * _e47)), ((uniforms.kd.z * _e27) + (uniforms.ks.z * _e47)));
+    float cos_theta_i = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1.0);
+    float cos_sum = ((cos_theta_i * min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1.0)) - (min(max(wi.x, -1.0), 1.0) * min(max(wo.x, -1.0), 1.0)));
+    float _e47 = ((0.0 < cos_sum) ? exp((uniforms.exponent * log(max(cos_sum, TINY)))) : 0.0);
+    return vec3(((uniforms.kd.x * cos_theta_i) + (uniforms.ks.x * _e47)), ((uniforms.kd.y * cos_theta_i) + (uniforms.ks.y * _e47)), ((uniforms.kd.z * cos_theta_i) + (uniforms.ks.z * _e47)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -22,10 +22,10 @@ const TINY: f32 = 0.000000000000000000000000000001f;
 // hair_bcsdf: `hairmath eval --model kajiya-kay`, Kajiya and Kay 1989 as the survey writes it: a diffuse k_d cos(theta_i) and one specular cone k_s cos^n(theta_i + theta_o), no cosine factor
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
-    let _e27 = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1f);
-    let _e37 = ((_e27 * min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1f)) - (min(max(wi.x, -1f), 1f) * min(max(wo.x, -1f), 1f)));
-    let _e47 = select(0f, exp((uniforms.exponent * log(max(_e37, TINY)))), (0f < _e37));
-    return vec3<f32>(((uniforms.kd.x * _e27) + (uniforms.ks.x * _e47)), ((uniforms.kd.y * _e27) + (uniforms.ks.y * _e47)), ((uniforms.kd.z * _e27) + (uniforms.ks.z * _e47)));
+    let cos_theta_i = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1f);
+    let cos_sum = ((cos_theta_i * min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1f)) - (min(max(wi.x, -1f), 1f) * min(max(wo.x, -1f), 1f)));
+    let _e47 = select(0f, exp((uniforms.exponent * log(max(cos_sum, TINY)))), (0f < cos_sum));
+    return vec3<f32>(((uniforms.kd.x * cos_theta_i) + (uniforms.ks.x * _e47)), ((uniforms.kd.y * cos_theta_i) + (uniforms.ks.y * _e47)), ((uniforms.kd.z * cos_theta_i) + (uniforms.ks.z * _e47)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -34,8 +34,18 @@ const float SQRT_TWO_PI = 2.5066283;
 const float ETA = 1.55;
 // UE's Shift, the cuticle tilt in radians: the TT lobe's shift (HairShading)
 const float SHIFT = 0.035;
+// a, b of cos(theta_d) eta' ~ a + b cos^2(theta_d), hairmath's minimax refit
+const float REFIT_ETA_PRIME[2] = float[2](1.1896168, 0.36737868);
+// c1, c2 of the TT offset (1 + a (c1 - c2 cos(phi))) cos(phi/2), hairmath's refit
+const float REFIT_H_TT[2] = float[2](0.7483624, 1.0864737);
+// a, b of the TT distribution exp(a cos(phi) + b), hairmath's least-squares refit
+const float REFIT_D_TT[2] = float[2](-3.4714139, -3.8275392);
 // 4 Shift, the TRT lobe's shift (HairShading)
 const float TRT_SHIFT = 0.14;
+// a, b of the TRT distribution exp(a cos(phi) + b), hairmath's least-squares refit
+const float REFIT_D_TRT[2] = float[2](17.745176, -17.549961);
+// 0.8, the TRT lobe's Tp = BaseColor^(0.8 / cos theta_d) (HairShading)
+const float TRT_COLOR_EXPONENT = 0.8;
 
 layout(std430, binding = 0) readonly buffer type_4_block_0Compute { float _group_0_binding_0_cs[]; };
 
@@ -58,57 +68,53 @@ float fresnel_schlick(float cos_i, float eta) {
 }
 
 // hairmath::models::karis::scaled_eta_prime_karis -- Karis 2016 (Bravais' index times cos theta_d)
-float scaled_eta_prime_karis(float cos_theta_d) {
-    return (1.1896168 + ((0.36737868 * cos_theta_d) * cos_theta_d));
+float scaled_eta_prime_karis(float cos_theta_d, float a, float b) {
+    return (a + ((b * cos_theta_d) * cos_theta_d));
 }
 
 // hairmath::models::karis::h_tt_karis -- Karis 2016 (h_TT ~ (1 + a (c1 - c2 cos phi)) cos(phi/2))
-float h_tt_karis(float a, float cos_phi, float cos_half_phi) {
-    return ((1.0 + (a * (0.7483624 - (1.0864737 * cos_phi)))) * cos_half_phi);
+float h_tt_karis(float a, float cos_phi, float cos_half_phi, float c1_, float c2_) {
+    return ((1.0 + (a * (c1_ - (c2_ * cos_phi)))) * cos_half_phi);
 }
 
 // hairmath::models::karis::d_karis -- Karis 2016 (D ~ exp(a cos phi + b))
-float d_karis(float cos_phi_1) {
-    return exp(((-3.4714139 * cos_phi_1) + -3.8275392));
-}
-
-// hairmath::models::karis::d_karis -- Karis 2016 (D ~ exp(a cos phi + b))
-float d_karis_2_(float cos_phi_2) {
-    return exp(((17.745176 * cos_phi_2) + -17.549961));
+float d_karis(float cos_phi, float a, float b) {
+    return exp(((a * cos_phi) + b));
 }
 
 // hair_bcsdf: `hairmath eval --model karis-refit`, Unreal's HairShading with hairmath's refitted constants and the colour inverted at the hair's beta_n, S(wi, wo)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     float _e23 = -(1.0);
-    float _e25 = min(max(-(wi.x), _e23), 1.0);
-    float _e28 = min(max(-(wo.x), _e23), 1.0);
-    float _e32 = min(max(_e28, -1.0), 1.0);
-    float _e39 = min(max(_e25, -1.0), 1.0);
-    float _e61 = (((wi.y * wo.y) + (wi.z * wo.z)) / sqrt(((((wi.y * wi.y) + (wi.z * wi.z)) * ((wo.y * wo.y) + (wo.z * wo.z))) + COS_PHI_EPSILON)));
-    float _e62 = (_e25 + _e28);
-    float _e65 = max(cos((0.5 * abs((atan(_e32, sqrt(max((1.0 - (_e32 * _e32)), 0.0))) - atan(_e39, sqrt(max((1.0 - (_e39 * _e39)), 0.0))))))), TINY);
-    float _e70 = sqrt(min(max((0.5 + (0.5 * _e61)), 0.0), 1.0));
-    float _e96 = gaussian_lobe(max((uniforms.width_r * (SQRT_TWO * _e70)), TINY), (_e62 - ((2.0 * R_TILT_SIN_COS[0]) * (((R_TILT_SIN_COS[1] * _e70) * sqrt(max((1.0 - (_e28 * _e28)), 0.0))) + (R_TILT_SIN_COS[0] * _e28)))));
-    float _e105 = fresnel_schlick(sqrt(min(max((0.5 + (0.5 * (((wo.x * wi.x) + (wo.y * wi.y)) + (wo.z * wi.z)))), 0.0), 1.0)), ETA);
-    float _e108 = max((_e96 * ((0.25 * _e70) * _e105)), 0.0);
-    float _e111 = gaussian_lobe(uniforms.width_tt, (_e62 - SHIFT));
-    float _e112 = scaled_eta_prime_karis(_e65);
-    float _e113 = (_e65 / _e112);
-    float _e114 = h_tt_karis(_e113, _e61, _e70);
-    float _e121 = fresnel_schlick((_e65 * sqrt(min(max((1.0 - (_e114 * _e114)), 0.0), 1.0))), ETA);
-    float _e122 = (1.0 - _e121);
-    float _e124 = d_karis(_e61);
-    float _e126 = ((_e111 * _e124) * (_e122 * _e122));
-    float _e127 = (_e114 * _e113);
-    float _e132 = (2.0 * abs((1.0 - ((_e127 * _e127) / _e65))));
-    float _e150 = gaussian_lobe(uniforms.width_trt, (_e62 - TRT_SHIFT));
-    float _e152 = fresnel_schlick((_e65 * 0.5), ETA);
-    float _e153 = (1.0 - _e152);
-    float _e156 = d_karis_2_(_e61);
-    float _e158 = ((_e150 * _e156) * ((_e153 * _e153) * _e152));
-    float _e160 = (0.8 / _e65);
-    return vec3(max(((_e108 + max((_e126 * exp((-(uniforms.sigma_a.x) * _e132))), 0.0)) + max((_e158 * exp((uniforms.log_color.x * _e160))), 0.0)), 0.0), max(((_e108 + max((_e126 * exp((-(uniforms.sigma_a.y) * _e132))), 0.0)) + max((_e158 * exp((uniforms.log_color.y * _e160))), 0.0)), 0.0), max(((_e108 + max((_e126 * exp((-(uniforms.sigma_a.z) * _e132))), 0.0)) + max((_e158 * exp((uniforms.log_color.z * _e160))), 0.0)), 0.0));
+    float sin_l = min(max(-(wi.x), _e23), 1.0);
+    float sin_v = min(max(-(wo.x), _e23), 1.0);
+    float _e32 = min(max(sin_v, -1.0), 1.0);
+    float _e39 = min(max(sin_l, -1.0), 1.0);
+    float cos_phi = (((wi.y * wo.y) + (wi.z * wo.z)) / sqrt(((((wi.y * wi.y) + (wi.z * wi.z)) * ((wo.y * wo.y) + (wo.z * wo.z))) + COS_PHI_EPSILON)));
+    float sum_of_sines = (sin_l + sin_v);
+    float cos_theta_d = max(cos((0.5 * abs((atan(_e32, sqrt(max((1.0 - (_e32 * _e32)), 0.0))) - atan(_e39, sqrt(max((1.0 - (_e39 * _e39)), 0.0))))))), TINY);
+    float cos_half_phi = sqrt(min(max((0.5 + (0.5 * cos_phi)), 0.0), 1.0));
+    float v_dot_l = (((wo.x * wi.x) + (wo.y * wi.y)) + (wo.z * wi.z));
+    float _e96 = gaussian_lobe(max((uniforms.width_r * (SQRT_TWO * cos_half_phi)), TINY), (sum_of_sines - ((2.0 * R_TILT_SIN_COS[0]) * (((R_TILT_SIN_COS[1] * cos_half_phi) * sqrt(max((1.0 - (sin_v * sin_v)), 0.0))) + (R_TILT_SIN_COS[0] * sin_v)))));
+    float _e105 = fresnel_schlick(sqrt(min(max((0.5 + (0.5 * v_dot_l)), 0.0), 1.0)), ETA);
+    float _e108 = max((_e96 * ((0.25 * cos_half_phi) * _e105)), 0.0);
+    float _e111 = gaussian_lobe(uniforms.width_tt, (sum_of_sines - SHIFT));
+    float _e116 = scaled_eta_prime_karis(cos_theta_d, REFIT_ETA_PRIME[0], REFIT_ETA_PRIME[1]);
+    float _e117 = (cos_theta_d / _e116);
+    float _e122 = h_tt_karis(_e117, cos_phi, cos_half_phi, REFIT_H_TT[0], REFIT_H_TT[1]);
+    float _e129 = fresnel_schlick((cos_theta_d * sqrt(min(max((1.0 - (_e122 * _e122)), 0.0), 1.0))), ETA);
+    float _e130 = (1.0 - _e129);
+    float _e136 = d_karis(cos_phi, REFIT_D_TT[0], REFIT_D_TT[1]);
+    float _e138 = ((_e111 * _e136) * (_e130 * _e130));
+    float _e139 = (_e122 * _e117);
+    float _e144 = (2.0 * abs((1.0 - ((_e139 * _e139) / cos_theta_d))));
+    float _e162 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - TRT_SHIFT));
+    float _e164 = fresnel_schlick((cos_theta_d * 0.5), ETA);
+    float _e165 = (1.0 - _e164);
+    float _e172 = d_karis(cos_phi, REFIT_D_TRT[0], REFIT_D_TRT[1]);
+    float _e174 = ((_e162 * _e172) * ((_e165 * _e165) * _e164));
+    float _e176 = (TRT_COLOR_EXPONENT / cos_theta_d);
+    return vec3(max(((_e108 + max((_e138 * exp((-(uniforms.sigma_a.x) * _e144))), 0.0)) + max((_e174 * exp((uniforms.log_color.x * _e176))), 0.0)), 0.0), max(((_e108 + max((_e138 * exp((-(uniforms.sigma_a.y) * _e144))), 0.0)) + max((_e174 * exp((uniforms.log_color.y * _e176))), 0.0)), 0.0), max(((_e108 + max((_e138 * exp((-(uniforms.sigma_a.z) * _e144))), 0.0)) + max((_e174 * exp((uniforms.log_color.z * _e176))), 0.0)), 0.0));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -32,8 +32,18 @@ const SQRT_TWO_PI: f32 = 2.5066283f;
 const ETA: f32 = 1.55f;
 // UE's Shift, the cuticle tilt in radians: the TT lobe's shift (HairShading)
 const SHIFT: f32 = 0.035f;
+// a, b of Karis' cos(theta_d) eta' ~ a + b cos^2(theta_d) (Karis 2016)
+const KARIS_ETA_PRIME: array<f32, 2> = array<f32, 2>(1.19f, 0.36f);
+// c1, c2 of Karis' TT offset (1 + a (c1 - c2 cos(phi))) cos(phi/2) (HairBsdf.ush)
+const KARIS_H_TT: array<f32, 2> = array<f32, 2>(0.6f, 0.8f);
+// a, b of Karis' TT distribution exp(a cos(phi) + b) (Karis 2016)
+const KARIS_D_TT: array<f32, 2> = array<f32, 2>(-3.65f, -3.98f);
 // 4 Shift, the TRT lobe's shift (HairShading)
 const TRT_SHIFT: f32 = 0.14f;
+// a, b of Karis' TRT distribution exp(a cos(phi) + b) (Karis 2016)
+const KARIS_D_TRT: array<f32, 2> = array<f32, 2>(17f, -16.78f);
+// 0.8, the TRT lobe's Tp = BaseColor^(0.8 / cos theta_d) (HairShading)
+const TRT_COLOR_EXPONENT: f32 = 0.8f;
 
 // hairmath::lobe::gaussian::gaussian_lobe -- Marschner et al. 2003, eq. 6
 fn gaussian_lobe(beta: f32, x: f32) -> f32 {
@@ -51,57 +61,53 @@ fn fresnel_schlick(cos_i: f32, eta: f32) -> f32 {
 }
 
 // hairmath::models::karis::scaled_eta_prime_karis -- Karis 2016 (Bravais' index times cos theta_d)
-fn scaled_eta_prime_karis(cos_theta_d: f32) -> f32 {
-    return (1.19f + ((0.36f * cos_theta_d) * cos_theta_d));
+fn scaled_eta_prime_karis(cos_theta_d: f32, a: f32, b: f32) -> f32 {
+    return (a + ((b * cos_theta_d) * cos_theta_d));
 }
 
 // hairmath::models::karis::h_tt_karis -- Karis 2016 (h_TT ~ (1 + a (c1 - c2 cos phi)) cos(phi/2))
-fn h_tt_karis(a: f32, cos_phi: f32, cos_half_phi: f32) -> f32 {
-    return ((1f + (a * (0.6f - (0.8f * cos_phi)))) * cos_half_phi);
+fn h_tt_karis(a: f32, cos_phi: f32, cos_half_phi: f32, c1_: f32, c2_: f32) -> f32 {
+    return ((1f + (a * (c1_ - (c2_ * cos_phi)))) * cos_half_phi);
 }
 
 // hairmath::models::karis::d_karis -- Karis 2016 (D ~ exp(a cos phi + b))
-fn d_karis(cos_phi_1: f32) -> f32 {
-    return exp(((-3.65f * cos_phi_1) + -3.98f));
-}
-
-// hairmath::models::karis::d_karis -- Karis 2016 (D ~ exp(a cos phi + b))
-fn d_karis_2_(cos_phi_2: f32) -> f32 {
-    return exp(((17f * cos_phi_2) + -16.78f));
+fn d_karis(cos_phi: f32, a: f32, b: f32) -> f32 {
+    return exp(((a * cos_phi) + b));
 }
 
 // hair_bcsdf: `hairmath eval --model karis`, Karis 2016 as Unreal Engine 4.27's HairShading (R + TT + TRT) with UE's BaseColor (--color, inverted at beta_n = 0.3) and Roughness, S(wi, wo)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e23 = -(1f);
-    let _e25 = min(max(-(wi.x), _e23), 1f);
-    let _e28 = min(max(-(wo.x), _e23), 1f);
-    let _e32 = min(max(_e28, -1f), 1f);
-    let _e39 = min(max(_e25, -1f), 1f);
-    let _e61 = (((wi.y * wo.y) + (wi.z * wo.z)) / sqrt(((((wi.y * wi.y) + (wi.z * wi.z)) * ((wo.y * wo.y) + (wo.z * wo.z))) + COS_PHI_EPSILON)));
-    let _e62 = (_e25 + _e28);
-    let _e65 = max(cos((0.5f * abs((atan2(_e32, sqrt(max((1f - (_e32 * _e32)), 0f))) - atan2(_e39, sqrt(max((1f - (_e39 * _e39)), 0f))))))), TINY);
-    let _e70 = sqrt(min(max((0.5f + (0.5f * _e61)), 0f), 1f));
-    let _e96 = gaussian_lobe(max((uniforms.width_r * (SQRT_TWO * _e70)), TINY), (_e62 - ((2f * R_TILT_SIN_COS[0]) * (((R_TILT_SIN_COS[1] * _e70) * sqrt(max((1f - (_e28 * _e28)), 0f))) + (R_TILT_SIN_COS[0] * _e28)))));
-    let _e105 = fresnel_schlick(sqrt(min(max((0.5f + (0.5f * (((wo.x * wi.x) + (wo.y * wi.y)) + (wo.z * wi.z)))), 0f), 1f)), ETA);
-    let _e108 = max((_e96 * ((0.25f * _e70) * _e105)), 0f);
-    let _e111 = gaussian_lobe(uniforms.width_tt, (_e62 - SHIFT));
-    let _e112 = scaled_eta_prime_karis(_e65);
-    let _e113 = (_e65 / _e112);
-    let _e114 = h_tt_karis(_e113, _e61, _e70);
-    let _e121 = fresnel_schlick((_e65 * sqrt(min(max((1f - (_e114 * _e114)), 0f), 1f))), ETA);
-    let _e122 = (1f - _e121);
-    let _e124 = d_karis(_e61);
-    let _e126 = ((_e111 * _e124) * (_e122 * _e122));
-    let _e127 = (_e114 * _e113);
-    let _e132 = (2f * abs((1f - ((_e127 * _e127) / _e65))));
-    let _e150 = gaussian_lobe(uniforms.width_trt, (_e62 - TRT_SHIFT));
-    let _e152 = fresnel_schlick((_e65 * 0.5f), ETA);
-    let _e153 = (1f - _e152);
-    let _e156 = d_karis_2_(_e61);
-    let _e158 = ((_e150 * _e156) * ((_e153 * _e153) * _e152));
-    let _e160 = (0.8f / _e65);
-    return vec3<f32>(max(((_e108 + max((_e126 * exp((-(uniforms.sigma_a.x) * _e132))), 0f)) + max((_e158 * exp((uniforms.log_color.x * _e160))), 0f)), 0f), max(((_e108 + max((_e126 * exp((-(uniforms.sigma_a.y) * _e132))), 0f)) + max((_e158 * exp((uniforms.log_color.y * _e160))), 0f)), 0f), max(((_e108 + max((_e126 * exp((-(uniforms.sigma_a.z) * _e132))), 0f)) + max((_e158 * exp((uniforms.log_color.z * _e160))), 0f)), 0f));
+    let sin_l = min(max(-(wi.x), _e23), 1f);
+    let sin_v = min(max(-(wo.x), _e23), 1f);
+    let _e32 = min(max(sin_v, -1f), 1f);
+    let _e39 = min(max(sin_l, -1f), 1f);
+    let cos_phi = (((wi.y * wo.y) + (wi.z * wo.z)) / sqrt(((((wi.y * wi.y) + (wi.z * wi.z)) * ((wo.y * wo.y) + (wo.z * wo.z))) + COS_PHI_EPSILON)));
+    let sum_of_sines = (sin_l + sin_v);
+    let cos_theta_d = max(cos((0.5f * abs((atan2(_e32, sqrt(max((1f - (_e32 * _e32)), 0f))) - atan2(_e39, sqrt(max((1f - (_e39 * _e39)), 0f))))))), TINY);
+    let cos_half_phi = sqrt(min(max((0.5f + (0.5f * cos_phi)), 0f), 1f));
+    let v_dot_l = (((wo.x * wi.x) + (wo.y * wi.y)) + (wo.z * wi.z));
+    let _e96 = gaussian_lobe(max((uniforms.width_r * (SQRT_TWO * cos_half_phi)), TINY), (sum_of_sines - ((2f * R_TILT_SIN_COS[0]) * (((R_TILT_SIN_COS[1] * cos_half_phi) * sqrt(max((1f - (sin_v * sin_v)), 0f))) + (R_TILT_SIN_COS[0] * sin_v)))));
+    let _e105 = fresnel_schlick(sqrt(min(max((0.5f + (0.5f * v_dot_l)), 0f), 1f)), ETA);
+    let _e108 = max((_e96 * ((0.25f * cos_half_phi) * _e105)), 0f);
+    let _e111 = gaussian_lobe(uniforms.width_tt, (sum_of_sines - SHIFT));
+    let _e116 = scaled_eta_prime_karis(cos_theta_d, KARIS_ETA_PRIME[0], KARIS_ETA_PRIME[1]);
+    let _e117 = (cos_theta_d / _e116);
+    let _e122 = h_tt_karis(_e117, cos_phi, cos_half_phi, KARIS_H_TT[0], KARIS_H_TT[1]);
+    let _e129 = fresnel_schlick((cos_theta_d * sqrt(min(max((1f - (_e122 * _e122)), 0f), 1f))), ETA);
+    let _e130 = (1f - _e129);
+    let _e136 = d_karis(cos_phi, KARIS_D_TT[0], KARIS_D_TT[1]);
+    let _e138 = ((_e111 * _e136) * (_e130 * _e130));
+    let _e139 = (_e122 * _e117);
+    let _e144 = (2f * abs((1f - ((_e139 * _e139) / cos_theta_d))));
+    let _e162 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - TRT_SHIFT));
+    let _e164 = fresnel_schlick((cos_theta_d * 0.5f), ETA);
+    let _e165 = (1f - _e164);
+    let _e172 = d_karis(cos_phi, KARIS_D_TRT[0], KARIS_D_TRT[1]);
+    let _e174 = ((_e162 * _e172) * ((_e165 * _e165) * _e164));
+    let _e176 = (TRT_COLOR_EXPONENT / cos_theta_d);
+    return vec3<f32>(max(((_e108 + max((_e138 * exp((-(uniforms.sigma_a.x) * _e144))), 0f)) + max((_e174 * exp((uniforms.log_color.x * _e176))), 0f)), 0f), max(((_e108 + max((_e138 * exp((-(uniforms.sigma_a.y) * _e144))), 0f)) + max((_e174 * exp((uniforms.log_color.y * _e176))), 0f)), 0f), max(((_e108 + max((_e138 * exp((-(uniforms.sigma_a.z) * _e144))), 0f)) + max((_e174 * exp((uniforms.log_color.z * _e176))), 0f)), 0f));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -15,6 +15,22 @@ struct FibreLocalDirections {
     vec3 wi;
     vec3 wo;
 };
+// sin_theta_i at the first texel of lut0_nguyen_m
+const float LUT0_NGUYEN_M_SIN_THETA_I_MIN = -1.0;
+// 1 / (1 - -1), sin_theta_i to [0, 1] across lut0_nguyen_m's texels
+const float LUT0_NGUYEN_M_SIN_THETA_I_SCALE = 0.5;
+// sin_theta_o at the first texel of lut0_nguyen_m
+const float LUT0_NGUYEN_M_SIN_THETA_O_MIN = -1.0;
+// 1 / (1 - -1), sin_theta_o to [0, 1] across lut0_nguyen_m's texels
+const float LUT0_NGUYEN_M_SIN_THETA_O_SCALE = 0.5;
+// cos_phi at the first texel of lut1_nguyen_n
+const float LUT1_NGUYEN_N_COS_PHI_MIN = -1.0;
+// 1 / (1 - -1), cos_phi to [0, 1] across lut1_nguyen_n's texels
+const float LUT1_NGUYEN_N_COS_PHI_SCALE = 0.5;
+// cos_theta_d at the first texel of lut1_nguyen_n
+const float LUT1_NGUYEN_N_COS_THETA_D_MIN = 0.0;
+// 1 / (1 - 0), cos_theta_d to [0, 1] across lut1_nguyen_n's texels
+const float LUT1_NGUYEN_N_COS_THETA_D_SCALE = 1.0;
 const NguyenDonnellyUniforms uniforms = NguyenDonnellyUniforms(1e-12);
 // 1e-30, the floor that keeps a denominator, a length or a width positive
 const float TINY = 1e-30;
@@ -33,77 +49,79 @@ layout(std430, binding = 0) readonly buffer type_7_block_0Compute { float _group
 layout(std430, binding = 1) buffer type_7_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
-// table 0 (nguyen-m): 2 axes, 4 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into
+// table 0 (nguyen-m): 2 axes, 4 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into: per axis t = clamp((x - MIN) * SCALE, 0, 1) * (n - 1) over its n texels
 vec4 lut0_nguyen_m(float sin_theta_i, float sin_theta_o) {
-    float _e11 = (min(max(((sin_theta_i - -1.0) * 0.5), 0.0), 1.0) * 127.0);
+    float _e11 = (min(max(((sin_theta_i - LUT0_NGUYEN_M_SIN_THETA_I_MIN) * LUT0_NGUYEN_M_SIN_THETA_I_SCALE), 0.0), 1.0) * 127.0);
     float _e14 = min(floor(_e11), 126.0);
     float _e15 = (_e11 - _e14);
     float _e16 = (1.0 - _e15);
     int _e20 = min(max(int(_e14), 0), 126);
     int _e22 = (_e20 + 1);
-    float _e27 = (min(max(((sin_theta_o - -1.0) * 0.5), 0.0), 1.0) * 127.0);
-    float _e29 = min(floor(_e27), 126.0);
-    float _e30 = (_e27 - _e29);
-    float _e31 = (1.0 - _e30);
-    int _e33 = min(max(int(_e29), 0), 126);
-    int _e34 = (_e33 + 1);
-    vec4 _e40 = texelFetch(_group_1_binding_0_cs, ivec2(_e20, _e33), 0);
-    vec4 _e46 = texelFetch(_group_1_binding_0_cs, ivec2(_e22, _e33), 0);
-    vec4 _e52 = texelFetch(_group_1_binding_0_cs, ivec2(_e20, _e34), 0);
-    vec4 _e58 = texelFetch(_group_1_binding_0_cs, ivec2(_e22, _e34), 0);
-    return ((((vec4(0.0) + (((1.0 * _e16) * _e31) * _e40)) + (((1.0 * _e15) * _e31) * _e46)) + (((1.0 * _e16) * _e30) * _e52)) + (((1.0 * _e15) * _e30) * _e58));
+    float _e29 = (min(max(((sin_theta_o - LUT0_NGUYEN_M_SIN_THETA_O_MIN) * LUT0_NGUYEN_M_SIN_THETA_O_SCALE), 0.0), 1.0) * 127.0);
+    float _e31 = min(floor(_e29), 126.0);
+    float _e32 = (_e29 - _e31);
+    float _e33 = (1.0 - _e32);
+    int _e35 = min(max(int(_e31), 0), 126);
+    int _e36 = (_e35 + 1);
+    vec4 _e40 = texelFetch(_group_1_binding_0_cs, ivec2(_e20, _e35), 0);
+    vec4 _e44 = texelFetch(_group_1_binding_0_cs, ivec2(_e22, _e35), 0);
+    vec4 _e49 = texelFetch(_group_1_binding_0_cs, ivec2(_e20, _e36), 0);
+    vec4 _e54 = texelFetch(_group_1_binding_0_cs, ivec2(_e22, _e36), 0);
+    return (((((_e16 * _e33) * _e40) + ((_e15 * _e33) * _e44)) + ((_e16 * _e32) * _e49)) + ((_e15 * _e32) * _e54));
 }
 
-// table 1 (nguyen-n): 2 axes, 7 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into
+// table 1 (nguyen-n): 2 axes, 7 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into: per axis t = clamp((x - MIN) * SCALE, 0, 1) * (n - 1) over its n texels
 vec4[2] lut1_nguyen_n(float cos_phi, float cos_theta_d) {
-    float _e11 = (min(max(((cos_phi - -1.0) * 0.5), 0.0), 1.0) * 127.0);
+    float _e11 = (min(max(((cos_phi - LUT1_NGUYEN_N_COS_PHI_MIN) * LUT1_NGUYEN_N_COS_PHI_SCALE), 0.0), 1.0) * 127.0);
     float _e14 = min(floor(_e11), 126.0);
     float _e15 = (_e11 - _e14);
     float _e16 = (1.0 - _e15);
     int _e20 = min(max(int(_e14), 0), 126);
     int _e22 = (_e20 + 1);
-    float _e27 = (min(max(((cos_theta_d - 0.0) * 1.0), 0.0), 1.0) * 127.0);
-    float _e29 = min(floor(_e27), 126.0);
-    float _e30 = (_e27 - _e29);
-    float _e31 = (1.0 - _e30);
-    int _e33 = min(max(int(_e29), 0), 126);
-    int _e34 = (_e33 + 1);
-    float _e40 = ((1.0 * _e16) * _e31);
-    ivec2 _e41 = ivec2(_e20, _e33);
-    vec4 _e42 = texelFetch(_group_1_binding_1_cs, _e41, 0);
-    vec4 _e45 = texelFetch(_group_1_binding_2_cs, _e41, 0);
-    float _e49 = ((1.0 * _e15) * _e31);
-    ivec2 _e50 = ivec2(_e22, _e33);
-    vec4 _e51 = texelFetch(_group_1_binding_1_cs, _e50, 0);
-    vec4 _e54 = texelFetch(_group_1_binding_2_cs, _e50, 0);
-    float _e58 = ((1.0 * _e16) * _e30);
-    ivec2 _e59 = ivec2(_e20, _e34);
-    vec4 _e60 = texelFetch(_group_1_binding_1_cs, _e59, 0);
-    vec4 _e63 = texelFetch(_group_1_binding_2_cs, _e59, 0);
-    float _e67 = ((1.0 * _e15) * _e30);
-    ivec2 _e68 = ivec2(_e22, _e34);
-    vec4 _e69 = texelFetch(_group_1_binding_1_cs, _e68, 0);
-    vec4 _e72 = texelFetch(_group_1_binding_2_cs, _e68, 0);
-    return vec4[2](((((vec4(0.0) + (_e40 * _e42)) + (_e49 * _e51)) + (_e58 * _e60)) + (_e67 * _e69)), ((((vec4(0.0) + (_e40 * _e45)) + (_e49 * _e54)) + (_e58 * _e63)) + (_e67 * _e72)));
+    float _e29 = (min(max(((cos_theta_d - LUT1_NGUYEN_N_COS_THETA_D_MIN) * LUT1_NGUYEN_N_COS_THETA_D_SCALE), 0.0), 1.0) * 127.0);
+    float _e31 = min(floor(_e29), 126.0);
+    float _e32 = (_e29 - _e31);
+    float _e33 = (1.0 - _e32);
+    int _e35 = min(max(int(_e31), 0), 126);
+    int _e36 = (_e35 + 1);
+    float _e39 = (_e16 * _e33);
+    ivec2 _e40 = ivec2(_e20, _e35);
+    vec4 _e41 = texelFetch(_group_1_binding_1_cs, _e40, 0);
+    vec4 _e43 = texelFetch(_group_1_binding_2_cs, _e40, 0);
+    float _e45 = (_e15 * _e33);
+    ivec2 _e46 = ivec2(_e22, _e35);
+    vec4 _e47 = texelFetch(_group_1_binding_1_cs, _e46, 0);
+    vec4 _e50 = texelFetch(_group_1_binding_2_cs, _e46, 0);
+    float _e53 = (_e16 * _e32);
+    ivec2 _e54 = ivec2(_e20, _e36);
+    vec4 _e55 = texelFetch(_group_1_binding_1_cs, _e54, 0);
+    vec4 _e58 = texelFetch(_group_1_binding_2_cs, _e54, 0);
+    float _e61 = (_e15 * _e32);
+    ivec2 _e62 = ivec2(_e22, _e36);
+    vec4 _e63 = texelFetch(_group_1_binding_1_cs, _e62, 0);
+    vec4 _e66 = texelFetch(_group_1_binding_2_cs, _e62, 0);
+    return vec4[2](((((_e39 * _e41) + (_e45 * _e47)) + (_e53 * _e55)) + (_e61 * _e63)), ((((_e39 * _e43) + (_e45 * _e50)) + (_e53 * _e58)) + (_e61 * _e66)));
 }
 
 // hair_bcsdf: `hairmath eval --model nguyen-donnelly`, Nguyen and Donnelly 2005 (GPU Gems 2 ch. 23): Marschner 2003 through 128 x 128 M and N lookup textures baked from the inputs, S(wi, wo)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
-    float _e14 = min(max(wi.x, -1.0), 1.0);
+    float sin_theta_i = min(max(wi.x, -1.0), 1.0);
     float _e17 = ((wi.y * wi.y) + (wi.z * wi.z));
-    float _e19 = min(sqrt(_e17), 1.0);
-    float _e21 = min(max(wo.x, -1.0), 1.0);
+    float cos_theta_i = min(sqrt(_e17), 1.0);
+    float sin_theta_o = min(max(wo.x, -1.0), 1.0);
     float _e24 = ((wo.y * wo.y) + (wo.z * wo.z));
-    vec4 _e27 = lut0_nguyen_m(_e14, _e21);
-    float _e38 = sqrt(max((((1.0 + (_e19 * min(sqrt(_e24), 1.0))) + (_e14 * _e21)) * 0.5), 0.0));
+    float cos_theta_o = min(sqrt(_e24), 1.0);
+    vec4 _e27 = lut0_nguyen_m(sin_theta_i, sin_theta_o);
+    float cos_theta_d = sqrt(max((((1.0 + (cos_theta_i * cos_theta_o)) + (sin_theta_i * sin_theta_o)) * 0.5), 0.0));
     float _e42 = (_e17 * _e24);
     bool _e43 = (0.0 < _e42);
-    vec4 _e50[2] = lut1_nguyen_n(min(max((_e43 ? (((wi.y * wo.y) + (wi.z * wo.z)) / sqrt((_e43 ? _e42 : 1.0))) : 1.0), -1.0), 1.0), _e38);
-    float _e67 = (_e19 / max((_e38 * _e38), uniforms.min_cos2_theta_d));
-    float _e69 = (_e27.y * _e67);
-    float _e70 = (_e27.z * _e67);
-    float _e71 = ((_e27.x * _e67) * _e50[0].w);
+    float cos_phi = min(max((_e43 ? (((wi.y * wo.y) + (wi.z * wo.z)) / sqrt((_e43 ? _e42 : 1.0))) : 1.0), -1.0), 1.0);
+    vec4 _e50[2] = lut1_nguyen_n(cos_phi, cos_theta_d);
+    float factor = (cos_theta_i / max((cos_theta_d * cos_theta_d), uniforms.min_cos2_theta_d));
+    float _e69 = (_e27.y * factor);
+    float _e70 = (_e27.z * factor);
+    float _e71 = ((_e27.x * factor) * _e50[0].w);
     return vec3(((_e71 + (_e69 * _e50[0].x)) + (_e70 * _e50[1].x)), ((_e71 + (_e69 * _e50[0].y)) + (_e70 * _e50[1].y)), ((_e71 + (_e69 * _e50[0].z)) + (_e70 * _e50[1].z)));
 }
 

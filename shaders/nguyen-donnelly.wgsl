@@ -13,6 +13,22 @@ struct FibreLocalDirections {
     wo: vec3<f32>,
 }
 
+// sin_theta_i at the first texel of lut0_nguyen_m
+const LUT0_NGUYEN_M_SIN_THETA_I_MIN: f32 = -1f;
+// 1 / (1 - -1), sin_theta_i to [0, 1] across lut0_nguyen_m's texels
+const LUT0_NGUYEN_M_SIN_THETA_I_SCALE: f32 = 0.5f;
+// sin_theta_o at the first texel of lut0_nguyen_m
+const LUT0_NGUYEN_M_SIN_THETA_O_MIN: f32 = -1f;
+// 1 / (1 - -1), sin_theta_o to [0, 1] across lut0_nguyen_m's texels
+const LUT0_NGUYEN_M_SIN_THETA_O_SCALE: f32 = 0.5f;
+// cos_phi at the first texel of lut1_nguyen_n
+const LUT1_NGUYEN_N_COS_PHI_MIN: f32 = -1f;
+// 1 / (1 - -1), cos_phi to [0, 1] across lut1_nguyen_n's texels
+const LUT1_NGUYEN_N_COS_PHI_SCALE: f32 = 0.5f;
+// cos_theta_d at the first texel of lut1_nguyen_n
+const LUT1_NGUYEN_N_COS_THETA_D_MIN: f32 = 0f;
+// 1 / (1 - 0), cos_theta_d to [0, 1] across lut1_nguyen_n's texels
+const LUT1_NGUYEN_N_COS_THETA_D_SCALE: f32 = 1f;
 const uniforms: NguyenDonnellyUniforms = NguyenDonnellyUniforms(0.000000000001f);
 // 1e-30, the floor that keeps a denominator, a length or a width positive
 const TINY: f32 = 0.000000000000000000000000000001f;
@@ -27,77 +43,79 @@ var lut1_nguyen_n_texels_a: texture_2d<f32>;
 @group(1) @binding(2) 
 var lut1_nguyen_n_texels_b: texture_2d<f32>;
 
-// table 0 (nguyen-m): 2 axes, 4 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into
+// table 0 (nguyen-m): 2 axes, 4 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into: per axis t = clamp((x - MIN) * SCALE, 0, 1) * (n - 1) over its n texels
 fn lut0_nguyen_m(sin_theta_i: f32, sin_theta_o: f32) -> vec4<f32> {
-    let _e11 = (min(max(((sin_theta_i - -1f) * 0.5f), 0f), 1f) * 127f);
+    let _e11 = (min(max(((sin_theta_i - LUT0_NGUYEN_M_SIN_THETA_I_MIN) * LUT0_NGUYEN_M_SIN_THETA_I_SCALE), 0f), 1f) * 127f);
     let _e14 = min(floor(_e11), 126f);
     let _e15 = (_e11 - _e14);
     let _e16 = (1f - _e15);
     let _e20 = clamp(i32(_e14), 0i, 126i);
     let _e22 = (_e20 + 1i);
-    let _e27 = (min(max(((sin_theta_o - -1f) * 0.5f), 0f), 1f) * 127f);
-    let _e29 = min(floor(_e27), 126f);
-    let _e30 = (_e27 - _e29);
-    let _e31 = (1f - _e30);
-    let _e33 = clamp(i32(_e29), 0i, 126i);
-    let _e34 = (_e33 + 1i);
-    let _e40 = textureLoad(lut0_nguyen_m_texels, vec2<i32>(_e20, _e33), 0i);
-    let _e46 = textureLoad(lut0_nguyen_m_texels, vec2<i32>(_e22, _e33), 0i);
-    let _e52 = textureLoad(lut0_nguyen_m_texels, vec2<i32>(_e20, _e34), 0i);
-    let _e58 = textureLoad(lut0_nguyen_m_texels, vec2<i32>(_e22, _e34), 0i);
-    return ((((vec4(0f) + (((1f * _e16) * _e31) * _e40)) + (((1f * _e15) * _e31) * _e46)) + (((1f * _e16) * _e30) * _e52)) + (((1f * _e15) * _e30) * _e58));
+    let _e29 = (min(max(((sin_theta_o - LUT0_NGUYEN_M_SIN_THETA_O_MIN) * LUT0_NGUYEN_M_SIN_THETA_O_SCALE), 0f), 1f) * 127f);
+    let _e31 = min(floor(_e29), 126f);
+    let _e32 = (_e29 - _e31);
+    let _e33 = (1f - _e32);
+    let _e35 = clamp(i32(_e31), 0i, 126i);
+    let _e36 = (_e35 + 1i);
+    let _e40 = textureLoad(lut0_nguyen_m_texels, vec2<i32>(_e20, _e35), 0i);
+    let _e44 = textureLoad(lut0_nguyen_m_texels, vec2<i32>(_e22, _e35), 0i);
+    let _e49 = textureLoad(lut0_nguyen_m_texels, vec2<i32>(_e20, _e36), 0i);
+    let _e54 = textureLoad(lut0_nguyen_m_texels, vec2<i32>(_e22, _e36), 0i);
+    return (((((_e16 * _e33) * _e40) + ((_e15 * _e33) * _e44)) + ((_e16 * _e32) * _e49)) + ((_e15 * _e32) * _e54));
 }
 
-// table 1 (nguyen-n): 2 axes, 7 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into
+// table 1 (nguyen-n): 2 axes, 7 channels; multilinear interpolation of texels read with textureLoad, in the operation order of hairmath::lut::Table::lookup_into: per axis t = clamp((x - MIN) * SCALE, 0, 1) * (n - 1) over its n texels
 fn lut1_nguyen_n(cos_phi: f32, cos_theta_d: f32) -> array<vec4<f32>, 2> {
-    let _e11 = (min(max(((cos_phi - -1f) * 0.5f), 0f), 1f) * 127f);
+    let _e11 = (min(max(((cos_phi - LUT1_NGUYEN_N_COS_PHI_MIN) * LUT1_NGUYEN_N_COS_PHI_SCALE), 0f), 1f) * 127f);
     let _e14 = min(floor(_e11), 126f);
     let _e15 = (_e11 - _e14);
     let _e16 = (1f - _e15);
     let _e20 = clamp(i32(_e14), 0i, 126i);
     let _e22 = (_e20 + 1i);
-    let _e27 = (min(max(((cos_theta_d - 0f) * 1f), 0f), 1f) * 127f);
-    let _e29 = min(floor(_e27), 126f);
-    let _e30 = (_e27 - _e29);
-    let _e31 = (1f - _e30);
-    let _e33 = clamp(i32(_e29), 0i, 126i);
-    let _e34 = (_e33 + 1i);
-    let _e40 = ((1f * _e16) * _e31);
-    let _e41 = vec2<i32>(_e20, _e33);
-    let _e42 = textureLoad(lut1_nguyen_n_texels_a, _e41, 0i);
-    let _e45 = textureLoad(lut1_nguyen_n_texels_b, _e41, 0i);
-    let _e49 = ((1f * _e15) * _e31);
-    let _e50 = vec2<i32>(_e22, _e33);
-    let _e51 = textureLoad(lut1_nguyen_n_texels_a, _e50, 0i);
-    let _e54 = textureLoad(lut1_nguyen_n_texels_b, _e50, 0i);
-    let _e58 = ((1f * _e16) * _e30);
-    let _e59 = vec2<i32>(_e20, _e34);
-    let _e60 = textureLoad(lut1_nguyen_n_texels_a, _e59, 0i);
-    let _e63 = textureLoad(lut1_nguyen_n_texels_b, _e59, 0i);
-    let _e67 = ((1f * _e15) * _e30);
-    let _e68 = vec2<i32>(_e22, _e34);
-    let _e69 = textureLoad(lut1_nguyen_n_texels_a, _e68, 0i);
-    let _e72 = textureLoad(lut1_nguyen_n_texels_b, _e68, 0i);
-    return array<vec4<f32>, 2>(((((vec4(0f) + (_e40 * _e42)) + (_e49 * _e51)) + (_e58 * _e60)) + (_e67 * _e69)), ((((vec4(0f) + (_e40 * _e45)) + (_e49 * _e54)) + (_e58 * _e63)) + (_e67 * _e72)));
+    let _e29 = (min(max(((cos_theta_d - LUT1_NGUYEN_N_COS_THETA_D_MIN) * LUT1_NGUYEN_N_COS_THETA_D_SCALE), 0f), 1f) * 127f);
+    let _e31 = min(floor(_e29), 126f);
+    let _e32 = (_e29 - _e31);
+    let _e33 = (1f - _e32);
+    let _e35 = clamp(i32(_e31), 0i, 126i);
+    let _e36 = (_e35 + 1i);
+    let _e39 = (_e16 * _e33);
+    let _e40 = vec2<i32>(_e20, _e35);
+    let _e41 = textureLoad(lut1_nguyen_n_texels_a, _e40, 0i);
+    let _e43 = textureLoad(lut1_nguyen_n_texels_b, _e40, 0i);
+    let _e45 = (_e15 * _e33);
+    let _e46 = vec2<i32>(_e22, _e35);
+    let _e47 = textureLoad(lut1_nguyen_n_texels_a, _e46, 0i);
+    let _e50 = textureLoad(lut1_nguyen_n_texels_b, _e46, 0i);
+    let _e53 = (_e16 * _e32);
+    let _e54 = vec2<i32>(_e20, _e36);
+    let _e55 = textureLoad(lut1_nguyen_n_texels_a, _e54, 0i);
+    let _e58 = textureLoad(lut1_nguyen_n_texels_b, _e54, 0i);
+    let _e61 = (_e15 * _e32);
+    let _e62 = vec2<i32>(_e22, _e36);
+    let _e63 = textureLoad(lut1_nguyen_n_texels_a, _e62, 0i);
+    let _e66 = textureLoad(lut1_nguyen_n_texels_b, _e62, 0i);
+    return array<vec4<f32>, 2>(((((_e39 * _e41) + (_e45 * _e47)) + (_e53 * _e55)) + (_e61 * _e63)), ((((_e39 * _e43) + (_e45 * _e50)) + (_e53 * _e58)) + (_e61 * _e66)));
 }
 
 // hair_bcsdf: `hairmath eval --model nguyen-donnelly`, Nguyen and Donnelly 2005 (GPU Gems 2 ch. 23): Marschner 2003 through 128 x 128 M and N lookup textures baked from the inputs, S(wi, wo)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
-    let _e14 = min(max(wi.x, -1f), 1f);
+    let sin_theta_i = min(max(wi.x, -1f), 1f);
     let _e17 = ((wi.y * wi.y) + (wi.z * wi.z));
-    let _e19 = min(sqrt(_e17), 1f);
-    let _e21 = min(max(wo.x, -1f), 1f);
+    let cos_theta_i = min(sqrt(_e17), 1f);
+    let sin_theta_o = min(max(wo.x, -1f), 1f);
     let _e24 = ((wo.y * wo.y) + (wo.z * wo.z));
-    let _e27 = lut0_nguyen_m(_e14, _e21);
-    let _e38 = sqrt(max((((1f + (_e19 * min(sqrt(_e24), 1f))) + (_e14 * _e21)) * 0.5f), 0f));
+    let cos_theta_o = min(sqrt(_e24), 1f);
+    let _e27 = lut0_nguyen_m(sin_theta_i, sin_theta_o);
+    let cos_theta_d = sqrt(max((((1f + (cos_theta_i * cos_theta_o)) + (sin_theta_i * sin_theta_o)) * 0.5f), 0f));
     let _e42 = (_e17 * _e24);
     let _e43 = (0f < _e42);
-    let _e50 = lut1_nguyen_n(min(max(select(1f, (((wi.y * wo.y) + (wi.z * wo.z)) / sqrt(select(1f, _e42, _e43))), _e43), -1f), 1f), _e38);
-    let _e67 = (_e19 / max((_e38 * _e38), uniforms.min_cos2_theta_d));
-    let _e69 = (_e27.y * _e67);
-    let _e70 = (_e27.z * _e67);
-    let _e71 = ((_e27.x * _e67) * _e50[0].w);
+    let cos_phi = min(max(select(1f, (((wi.y * wo.y) + (wi.z * wo.z)) / sqrt(select(1f, _e42, _e43))), _e43), -1f), 1f);
+    let _e50 = lut1_nguyen_n(cos_phi, cos_theta_d);
+    let factor = (cos_theta_i / max((cos_theta_d * cos_theta_d), uniforms.min_cos2_theta_d));
+    let _e69 = (_e27.y * factor);
+    let _e70 = (_e27.z * factor);
+    let _e71 = ((_e27.x * factor) * _e50[0].w);
     return vec3<f32>(((_e71 + (_e69 * _e50[0].x)) + (_e70 * _e50[1].x)), ((_e71 + (_e69 * _e50[0].y)) + (_e70 * _e50[1].y)), ((_e71 + (_e69 * _e50[0].z)) + (_e70 * _e50[1].z)));
 }
 

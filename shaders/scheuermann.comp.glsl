@@ -27,6 +27,10 @@ struct FibreLocalDirections {
 const ScheuermannUniforms uniforms = ScheuermannUniforms(vec3(9.8897275e-5, 1.5974958e-5, 2.2135521e-7), vec3(0.027071713, 0.027071713, 0.027071713), 23.637539, 0.99939084, -0.034899496, vec3(0.0016160229, 0.00045222277, 2.1840126e-5), 5.9093847, 0.9975641, 0.06975647, 1.0);
 // 1e-30, the floor that keeps a denominator, a length or a width positive
 const float TINY = 1e-30;
+// 0.25, the bias of the diffuse's mix(0.25, 1, N.L) (Scheuermann 2004)
+const float DIFFUSE_BIAS = 0.25;
+// 0.75, the scale of the diffuse's mix(0.25, 1, N.L) = 0.25 + 0.75 N.L (Scheuermann 2004)
+const float DIFFUSE_SCALE = 0.75;
 
 layout(std430, binding = 0) readonly buffer type_3_block_0Compute { float _group_0_binding_0_cs[]; };
 
@@ -39,24 +43,24 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     float _e36 = min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1.0);
     bool _e37 = (TINY < _e36);
     float _e39 = (1.0 / max(_e36, TINY));
-    float _e41 = (_e37 ? (wo.y * _e39) : 1.0);
-    float _e43 = (_e37 ? (wo.z * _e39) : 0.0);
-    float _e52 = min(max((0.25 + (0.75 * ((wi.y * _e41) + (wi.z * _e43)))), 0.0), 1.0);
+    float normal_y = (_e37 ? (wo.y * _e39) : 1.0);
+    float normal_z = (_e37 ? (wo.z * _e39) : 0.0);
+    float diffuse = min(max((DIFFUSE_BIAS + (DIFFUSE_SCALE * ((wi.y * normal_y) + (wi.z * normal_z)))), 0.0), 1.0);
     float _e53 = (wi.x + wo.x);
     float _e54 = (wi.y + wo.y);
     float _e55 = (wi.z + wo.z);
     float _e63 = (1.0 / max(sqrt((((_e53 * _e53) + (_e54 * _e54)) + (_e55 * _e55))), TINY));
-    float _e64 = (_e53 * _e63);
-    float _e68 = (((_e54 * _e41) + (_e55 * _e43)) * _e63);
-    float _e73 = min(max(((uniforms.tangent_primary * _e64) + (uniforms.normal_primary * _e68)), -1.0), 1.0);
+    float half_t = (_e53 * _e63);
+    float half_n = (((_e54 * normal_y) + (_e55 * normal_z)) * _e63);
+    float _e73 = min(max(((uniforms.tangent_primary * half_t) + (uniforms.normal_primary * half_n)), -1.0), 1.0);
     float _e76 = min(max((_e73 + 1.0), 0.0), 1.0);
     float _e84 = (1.0 - (_e73 * _e73));
     float _e91 = (((_e76 * _e76) * (3.0 - (2.0 * _e76))) * ((0.0 < _e84) ? exp((uniforms.half_exponent_primary * log(max(_e84, TINY)))) : 0.0));
-    float _e96 = min(max(((uniforms.tangent_secondary * _e64) + (uniforms.normal_secondary * _e68)), -1.0), 1.0);
+    float _e96 = min(max(((uniforms.tangent_secondary * half_t) + (uniforms.normal_secondary * half_n)), -1.0), 1.0);
     float _e99 = min(max((_e96 + 1.0), 0.0), 1.0);
     float _e105 = (1.0 - (_e96 * _e96));
     float _e119 = (uniforms.noise_mask * (((_e99 * _e99) * (3.0 - (2.0 * _e99))) * ((0.0 < _e105) ? exp((uniforms.half_exponent_secondary * log(max(_e105, TINY)))) : 0.0)));
-    return vec3((((uniforms.kd.x * _e52) + (uniforms.ks_primary.x * _e91)) + (uniforms.ks_secondary.x * _e119)), (((uniforms.kd.y * _e52) + (uniforms.ks_primary.y * _e91)) + (uniforms.ks_secondary.y * _e119)), (((uniforms.kd.z * _e52) + (uniforms.ks_primary.z * _e91)) + (uniforms.ks_secondary.z * _e119)));
+    return vec3((((uniforms.kd.x * diffuse) + (uniforms.ks_primary.x * _e91)) + (uniforms.ks_secondary.x * _e119)), (((uniforms.kd.y * diffuse) + (uniforms.ks_primary.y * _e91)) + (uniforms.ks_secondary.y * _e119)), (((uniforms.kd.z * diffuse) + (uniforms.ks_primary.z * _e91)) + (uniforms.ks_secondary.z * _e119)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -25,6 +25,10 @@ struct FibreLocalDirections {
 const uniforms: ScheuermannUniforms = ScheuermannUniforms(vec3<f32>(0.000098897275f, 0.000015974958f, 0.00000022135521f), vec3<f32>(0.027071713f, 0.027071713f, 0.027071713f), 23.637539f, 0.99939084f, -0.034899496f, vec3<f32>(0.0016160229f, 0.00045222277f, 0.000021840126f), 5.9093847f, 0.9975641f, 0.06975647f, 1f);
 // 1e-30, the floor that keeps a denominator, a length or a width positive
 const TINY: f32 = 0.000000000000000000000000000001f;
+// 0.25, the bias of the diffuse's mix(0.25, 1, N.L) (Scheuermann 2004)
+const DIFFUSE_BIAS: f32 = 0.25f;
+// 0.75, the scale of the diffuse's mix(0.25, 1, N.L) = 0.25 + 0.75 N.L (Scheuermann 2004)
+const DIFFUSE_SCALE: f32 = 0.75f;
 
 // hair_bcsdf: `hairmath eval --model scheuermann`, Scheuermann 2004 (ATI) after the blog seed: two smoothstep(-1, 0, T.H) sin(T, H)^e lobes on shifted tangents, the second tinted and masked, and a scaled-and-biased Lambert diffuse
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
@@ -32,24 +36,24 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e36 = min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1f);
     let _e37 = (TINY < _e36);
     let _e39 = (1f / max(_e36, TINY));
-    let _e41 = select(1f, (wo.y * _e39), _e37);
-    let _e43 = select(0f, (wo.z * _e39), _e37);
-    let _e52 = min(max((0.25f + (0.75f * ((wi.y * _e41) + (wi.z * _e43)))), 0f), 1f);
+    let normal_y = select(1f, (wo.y * _e39), _e37);
+    let normal_z = select(0f, (wo.z * _e39), _e37);
+    let diffuse = min(max((DIFFUSE_BIAS + (DIFFUSE_SCALE * ((wi.y * normal_y) + (wi.z * normal_z)))), 0f), 1f);
     let _e53 = (wi.x + wo.x);
     let _e54 = (wi.y + wo.y);
     let _e55 = (wi.z + wo.z);
     let _e63 = (1f / max(sqrt((((_e53 * _e53) + (_e54 * _e54)) + (_e55 * _e55))), TINY));
-    let _e64 = (_e53 * _e63);
-    let _e68 = (((_e54 * _e41) + (_e55 * _e43)) * _e63);
-    let _e73 = min(max(((uniforms.tangent_primary * _e64) + (uniforms.normal_primary * _e68)), -1f), 1f);
+    let half_t = (_e53 * _e63);
+    let half_n = (((_e54 * normal_y) + (_e55 * normal_z)) * _e63);
+    let _e73 = min(max(((uniforms.tangent_primary * half_t) + (uniforms.normal_primary * half_n)), -1f), 1f);
     let _e76 = min(max((_e73 + 1f), 0f), 1f);
     let _e84 = (1f - (_e73 * _e73));
     let _e91 = (((_e76 * _e76) * (3f - (2f * _e76))) * select(0f, exp((uniforms.half_exponent_primary * log(max(_e84, TINY)))), (0f < _e84)));
-    let _e96 = min(max(((uniforms.tangent_secondary * _e64) + (uniforms.normal_secondary * _e68)), -1f), 1f);
+    let _e96 = min(max(((uniforms.tangent_secondary * half_t) + (uniforms.normal_secondary * half_n)), -1f), 1f);
     let _e99 = min(max((_e96 + 1f), 0f), 1f);
     let _e105 = (1f - (_e96 * _e96));
     let _e119 = (uniforms.noise_mask * (((_e99 * _e99) * (3f - (2f * _e99))) * select(0f, exp((uniforms.half_exponent_secondary * log(max(_e105, TINY)))), (0f < _e105))));
-    return vec3<f32>((((uniforms.kd.x * _e52) + (uniforms.ks_primary.x * _e91)) + (uniforms.ks_secondary.x * _e119)), (((uniforms.kd.y * _e52) + (uniforms.ks_primary.y * _e91)) + (uniforms.ks_secondary.y * _e119)), (((uniforms.kd.z * _e52) + (uniforms.ks_primary.z * _e91)) + (uniforms.ks_secondary.z * _e119)));
+    return vec3<f32>((((uniforms.kd.x * diffuse) + (uniforms.ks_primary.x * _e91)) + (uniforms.ks_secondary.x * _e119)), (((uniforms.kd.y * diffuse) + (uniforms.ks_primary.y * _e91)) + (uniforms.ks_secondary.y * _e119)), (((uniforms.kd.z * diffuse) + (uniforms.ks_primary.z * _e91)) + (uniforms.ks_secondary.z * _e119)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -36,16 +36,16 @@ layout(std430, binding = 1) buffer type_3_block_1Compute { float _group_0_bindin
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     float _e31 = min(max(wi.x, -1.0), 1.0);
-    float _e36 = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1.0);
+    float cos_theta_i = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1.0);
     float _e38 = min(max(wo.x, -1.0), 1.0);
     float _e43 = min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1.0);
-    float _e46 = ((_e36 * _e43) - (_e31 * _e38));
-    float _e49 = ((_e31 * _e43) + (_e36 * _e38));
-    float _e52 = ((_e46 * uniforms.cos_shift_primary) + (_e49 * uniforms.sin_shift_primary));
-    float _e55 = ((_e46 * uniforms.cos_shift_secondary) - (_e49 * uniforms.sin_shift_secondary));
-    float _e65 = ((0.0 < _e52) ? exp((uniforms.exponent_primary * log(max(_e52, TINY)))) : 0.0);
-    float _e74 = ((0.0 < _e55) ? exp((uniforms.exponent_secondary * log(max(_e55, TINY)))) : 0.0);
-    return vec3((((uniforms.kd.x * _e36) + (uniforms.ks_primary.x * _e65)) + (uniforms.ks_secondary.x * _e74)), (((uniforms.kd.y * _e36) + (uniforms.ks_primary.y * _e65)) + (uniforms.ks_secondary.y * _e74)), (((uniforms.kd.z * _e36) + (uniforms.ks_primary.z * _e65)) + (uniforms.ks_secondary.z * _e74)));
+    float _e46 = ((cos_theta_i * _e43) - (_e31 * _e38));
+    float _e49 = ((_e31 * _e43) + (cos_theta_i * _e38));
+    float cos_primary = ((_e46 * uniforms.cos_shift_primary) + (_e49 * uniforms.sin_shift_primary));
+    float cos_secondary = ((_e46 * uniforms.cos_shift_secondary) - (_e49 * uniforms.sin_shift_secondary));
+    float _e65 = ((0.0 < cos_primary) ? exp((uniforms.exponent_primary * log(max(cos_primary, TINY)))) : 0.0);
+    float _e74 = ((0.0 < cos_secondary) ? exp((uniforms.exponent_secondary * log(max(cos_secondary, TINY)))) : 0.0);
+    return vec3((((uniforms.kd.x * cos_theta_i) + (uniforms.ks_primary.x * _e65)) + (uniforms.ks_secondary.x * _e74)), (((uniforms.kd.y * cos_theta_i) + (uniforms.ks_primary.y * _e65)) + (uniforms.ks_secondary.y * _e74)), (((uniforms.kd.z * cos_theta_i) + (uniforms.ks_primary.z * _e65)) + (uniforms.ks_secondary.z * _e74)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -29,16 +29,16 @@ const TINY: f32 = 0.000000000000000000000000000001f;
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e31 = min(max(wi.x, -1f), 1f);
-    let _e36 = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1f);
+    let cos_theta_i = min(sqrt(((wi.y * wi.y) + (wi.z * wi.z))), 1f);
     let _e38 = min(max(wo.x, -1f), 1f);
     let _e43 = min(sqrt(((wo.y * wo.y) + (wo.z * wo.z))), 1f);
-    let _e46 = ((_e36 * _e43) - (_e31 * _e38));
-    let _e49 = ((_e31 * _e43) + (_e36 * _e38));
-    let _e52 = ((_e46 * uniforms.cos_shift_primary) + (_e49 * uniforms.sin_shift_primary));
-    let _e55 = ((_e46 * uniforms.cos_shift_secondary) - (_e49 * uniforms.sin_shift_secondary));
-    let _e65 = select(0f, exp((uniforms.exponent_primary * log(max(_e52, TINY)))), (0f < _e52));
-    let _e74 = select(0f, exp((uniforms.exponent_secondary * log(max(_e55, TINY)))), (0f < _e55));
-    return vec3<f32>((((uniforms.kd.x * _e36) + (uniforms.ks_primary.x * _e65)) + (uniforms.ks_secondary.x * _e74)), (((uniforms.kd.y * _e36) + (uniforms.ks_primary.y * _e65)) + (uniforms.ks_secondary.y * _e74)), (((uniforms.kd.z * _e36) + (uniforms.ks_primary.z * _e65)) + (uniforms.ks_secondary.z * _e74)));
+    let _e46 = ((cos_theta_i * _e43) - (_e31 * _e38));
+    let _e49 = ((_e31 * _e43) + (cos_theta_i * _e38));
+    let cos_primary = ((_e46 * uniforms.cos_shift_primary) + (_e49 * uniforms.sin_shift_primary));
+    let cos_secondary = ((_e46 * uniforms.cos_shift_secondary) - (_e49 * uniforms.sin_shift_secondary));
+    let _e65 = select(0f, exp((uniforms.exponent_primary * log(max(cos_primary, TINY)))), (0f < cos_primary));
+    let _e74 = select(0f, exp((uniforms.exponent_secondary * log(max(cos_secondary, TINY)))), (0f < cos_secondary));
+    return vec3<f32>((((uniforms.kd.x * cos_theta_i) + (uniforms.ks_primary.x * _e65)) + (uniforms.ks_secondary.x * _e74)), (((uniforms.kd.y * cos_theta_i) + (uniforms.ks_primary.y * _e65)) + (uniforms.ks_secondary.y * _e74)), (((uniforms.kd.z * cos_theta_i) + (uniforms.ks_primary.z * _e65)) + (uniforms.ks_secondary.z * _e74)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

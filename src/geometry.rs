@@ -126,8 +126,20 @@ pub fn local_sin_cos_theta<R: Real>(w: V3<R>) -> (R, R) {
 /// with 0 when the two are not both defined (never atan2(0, 0)).
 #[inline(always)]
 pub fn azimuth_between<R: Real>(tangent: V3<R>, a: V3<R>, b: V3<R>) -> R {
-    let sine = tangent.dot(a.cross(b));
-    let cosine = a.dot(b);
+    angle_of(tangent.dot(a.cross(b)), a.dot(b))
+}
+
+/// [`azimuth_between`] in the local frame (tangent +X) of the normal-plane components
+/// `(a_y, a_z)` and `(b_y, b_z)`: `atan2(a_y b_z - a_z b_y, a_y b_y + a_z b_z)`.
+#[inline(always)]
+fn local_azimuth_between<R: Real>(a_y: R, a_z: R, b_y: R, b_z: R) -> R {
+    angle_of(a_y * b_z - a_z * b_y, a_y * b_y + a_z * b_z)
+}
+
+/// The angle whose sine and cosine are proportional to `sine` and `cosine`, `atan2(sine,
+/// cosine)` in [-pi, pi], and 0 when both are 0 (never atan2(0, 0)).
+#[inline(always)]
+fn angle_of<R: Real>(sine: R, cosine: R) -> R {
     let defined = R::c(0.0).lt(sine.abs() + cosine.abs());
     sine.atan2(R::select(defined, cosine, R::c(1.0)))
 }
@@ -159,13 +171,16 @@ pub fn local_fibre_angles<R: Real>(wi: V3<R>, wo: V3<R>) -> FibreAngles<R> {
     let args = [wi.x, wi.y, wi.z, wo.x, wo.y, wo.z];
     let [sin_theta_i, cos_theta_i, sin_theta_o, cos_theta_o, phi] =
         R::call(&FUNCTION, args, |[ix, iy, iz, ox, oy, oz]| {
-            let x = V3::c(1.0, 0.0, 0.0);
-            let pi_ = V3::new(R::c(0.0), iy, iz);
-            let po = V3::new(R::c(0.0), oy, oz);
             // phi_o - phi_i is the signed angle from wi's projection to wo's.
             let (sin_i, cos_i) = local_sin_cos_theta(V3::new(ix, iy, iz));
             let (sin_o, cos_o) = local_sin_cos_theta(V3::new(ox, oy, oz));
-            [sin_i, cos_i, sin_o, cos_o, azimuth_between(x, pi_, po)]
+            [
+                sin_i,
+                cos_i,
+                sin_o,
+                cos_o,
+                local_azimuth_between(iy, iz, oy, oz),
+            ]
         });
     FibreAngles {
         sin_theta_i,

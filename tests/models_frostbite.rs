@@ -283,8 +283,8 @@ fn frostbite_refit_is_the_slides_at_the_refitted_offsets() {
     }
     assert_eq!(
         (
-            <hairmath::models::Refitted as FrostbiteVariant>::TT_OFFSET,
-            <hairmath::models::Refitted as FrostbiteVariant>::TRT_OFFSET
+            <hairmath::models::Refitted as FrostbiteVariant>::TT_OFFSET.get::<f64>(),
+            <hairmath::models::Refitted as FrostbiteVariant>::TRT_OFFSET.get::<f64>()
         ),
         REFIT_OFFSETS
     );

@@ -50,11 +50,11 @@ impl<R: Real> Refraction<R> {
     #[inline(always)]
     pub fn new(sin_theta: R, cos_theta: R, eta: R, inv_eta: R) -> Self {
         let sin_t = sin_theta * inv_eta;
-        let cos_theta_t = safe_sqrt(R::c(1.0) - sin_t * sin_t);
+        let cos_theta_t = safe_sqrt(R::c(1.0) - sin_t * sin_t).label("cos_theta_t");
         Refraction {
             cos_theta,
             cos_theta_t,
-            inv_cos_theta_t: R::c(1.0) / cos_theta_t,
+            inv_cos_theta_t: (R::c(1.0) / cos_theta_t).label("inv_cos_theta_t"),
             eta,
             inv_eta,
         }

@@ -324,7 +324,7 @@ impl<R: Real> PairAngles<R> {
             out: Outgoing {
                 sin_o: a.sin_theta_o,
                 cos_o: a.cos_theta_o,
-                phi: -a.phi,
+                phi: (-a.phi).label("phi"),
                 h: query.h,
             },
         }

@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use super::table::{axis_cell, Table, MAX_AXES};
+use super::table::{accumulate, axis_cell, corner_weight, Table, MAX_AXES};
 use super::{LutError, ShapeError};
 use crate::real::Real;
 
@@ -86,16 +86,11 @@ impl<const D: usize, const C: usize> SharedTable<D, C> {
         let mut out = [0.0; C];
         let mut index = [0usize; MAX_AXES];
         for corner in 0..(1usize << D) {
-            let mut w = 1.0f64;
-            for d in 0..D {
-                let upper = (corner >> d) & 1 == 1;
-                index[d] = base[d] + usize::from(upper);
-                w *= if upper { frac[d] } else { 1.0 - frac[d] };
-            }
+            let w = corner_weight(corner, &base[..D], &frac[..D], &mut index[..D]);
             for (c, o) in out.iter_mut().enumerate() {
                 // In range: axis_cell's cell index is at most size - 2.
                 let v = self.table.get(&index[..D], c).unwrap_or(0.0);
-                *o += w * f64::from(v);
+                *o = accumulate(corner, *o, w * f64::from(v));
             }
         }
         out

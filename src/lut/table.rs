@@ -99,6 +99,39 @@ pub fn axis_cell<R: Real>(x: R, min: f64, max: f64, size: usize) -> (R, R) {
     (i0, t - i0)
 }
 
+/// The weight of corner `corner` of a cell (axis `d` at its upper sample when bit `d` of
+/// `corner` is set) and, in `index`, the corner's sample indices from the cell's lower ones
+/// `base`: the product of the factors `frac[d]` (upper) or `1 - frac[d]` (lower) in axis order,
+/// starting from the first (1 for a table of no axes). Every interpolation of a table, on the
+/// CPU and in shader code, forms its weights so.
+#[inline(always)]
+pub(crate) fn corner_weight<R: Real>(
+    corner: usize,
+    base: &[usize],
+    frac: &[R],
+    index: &mut [usize],
+) -> R {
+    let mut weight = None;
+    for (d, (&f, i)) in frac.iter().zip(index.iter_mut()).enumerate() {
+        let upper = (corner >> d) & 1 == 1;
+        *i = base[d] + usize::from(upper);
+        let factor = if upper { f } else { R::c(1.0) - f };
+        weight = Some(weight.map_or(factor, |w: R| w * factor));
+    }
+    weight.unwrap_or(R::c(1.0))
+}
+
+/// The running sum of an interpolation after the term of corner `corner`: the term itself for
+/// the first corner, `sum + term` after it (the order of every interpolation of a table).
+#[inline(always)]
+pub(crate) fn accumulate<R: Real>(corner: usize, sum: R, term: R) -> R {
+    if corner == 0 {
+        term
+    } else {
+        sum + term
+    }
+}
+
 /// A lookup table: `channels` f32 values per grid point of one to three [`Axis`] values.
 ///
 /// Memory layout (also of the raw file): channel fastest, then axis 0, then axis 1, then
@@ -285,19 +318,13 @@ impl Table {
             base[d] = i0 as usize;
             frac[d] = f;
         }
-        out.iter_mut().for_each(|o| *o = 0.0);
-        // The 2^dims corners of the cell.
+        // The 2^dims corners of the cell, the first term starting the sum.
         let mut index = [0usize; MAX_AXES];
         for corner in 0..(1usize << dims) {
-            let mut w = 1.0f32;
-            for d in 0..dims {
-                let upper = (corner >> d) & 1 == 1;
-                index[d] = base[d] + usize::from(upper);
-                w *= if upper { frac[d] } else { 1.0 - frac[d] };
-            }
+            let w = corner_weight(corner, &base[..dims], &frac[..dims], &mut index[..dims]);
             let at = self.offset(&index[..dims]);
             for (o, v) in out.iter_mut().zip(&self.data[at..at + nc]) {
-                *o += w * v;
+                *o = accumulate(corner, *o, w * v);
             }
         }
         Ok(())

@@ -131,7 +131,7 @@ use super::constants::{
     FROSTBITE_TT_BETA_N, FROSTBITE_TT_GAUSSIAN_A, FROSTBITE_TT_GAUSSIAN_B, FROSTBITE_TT_THETA_O,
 };
 use super::frostbite::{tt_gaussian, Transmitted};
-use super::karis::ExpCosCoefficients;
+use super::karis::{ExpCosCoefficients, KARIS_D_TRT_TABLE};
 use super::unreal::{chiang_r_width_in_sines, r_azimuthal, Published, Refitted};
 use crate::absorption::PathLength;
 use crate::azimuthal::Refraction;
@@ -144,7 +144,7 @@ use crate::geometry::local_fibre_angles;
 use crate::lobe::gaussian_lobe;
 use crate::lut::{Axis, ParamValue, SharedTable, Table, TableMeta};
 use crate::params::{AzimuthalRoughness, HairParams};
-use crate::real::Real;
+use crate::real::{NamedConstant, Real};
 
 /// The lobes of the Frostbite models, in the order of [`Bcsdf::eval_lobes`].
 pub const FROSTBITE_LOBES: [&str; 3] = ["R", "TT", "TRT"];
@@ -159,26 +159,51 @@ const MIN_ETA: f64 = 1.0 + 1.0 / 1_048_576.0;
 
 /// A variant of the Frostbite model: the offsets at which the transmitted lobes' attenuations
 /// are evaluated (a type, so that each variant is a model of its own with its own name, and
-/// the offsets fold into shader code).
+/// the offsets are named constants of its shader code).
 pub trait FrostbiteVariant: Copy + core::fmt::Debug + 'static {
     /// h of `A_TT`.
-    const TT_OFFSET: f64;
+    const TT_OFFSET: &'static NamedConstant;
     /// h of `A_TRT`.
-    const TRT_OFFSET: f64;
+    const TRT_OFFSET: &'static NamedConstant;
 }
+
+/// The slides' h_TT = 0 ([`Transmitted::published_offset`]).
+static SLIDES_TT_OFFSET: NamedConstant = NamedConstant {
+    name: "TT_OFFSET",
+    meaning: "h_TT = 0, the offset of Frostbite's TT attenuation (Tafuri 2019, slide 20)",
+    values: &[Transmitted::Tt.published_offset()],
+};
+/// The slides' h_TRT = sqrt(3)/2 ([`Transmitted::published_offset`]).
+static SLIDES_TRT_OFFSET: NamedConstant = NamedConstant {
+    name: "TRT_OFFSET",
+    meaning: "h_TRT = sqrt(3)/2, the offset of Frostbite's TRT attenuation (slide 21)",
+    values: &[Transmitted::Trt.published_offset()],
+};
+/// hairmath's refitted h_TT ([`Transmitted::refit_offset`]).
+static REFIT_TT_OFFSET: NamedConstant = NamedConstant {
+    name: "REFIT_TT_OFFSET",
+    meaning: "h_TT whose attenuation is closest to the h-average (hairmath's refit, eta 1.55)",
+    values: &[Transmitted::Tt.refit_offset()],
+};
+/// hairmath's refitted h_TRT ([`Transmitted::refit_offset`]).
+static REFIT_TRT_OFFSET: NamedConstant = NamedConstant {
+    name: "REFIT_TRT_OFFSET",
+    meaning: "h_TRT whose attenuation is closest to the h-average (hairmath's refit, eta 1.55)",
+    values: &[Transmitted::Trt.refit_offset()],
+};
 
 /// The slides' offsets, h_TT = 0 and h_TRT = sqrt(3)/2 ([`Transmitted::published_offset`]):
 /// [`Frostbite`].
 impl FrostbiteVariant for Published {
-    const TT_OFFSET: f64 = Transmitted::Tt.published_offset();
-    const TRT_OFFSET: f64 = Transmitted::Trt.published_offset();
+    const TT_OFFSET: &'static NamedConstant = &SLIDES_TT_OFFSET;
+    const TRT_OFFSET: &'static NamedConstant = &SLIDES_TRT_OFFSET;
 }
 
 /// hairmath's refitted offsets, 0.600 and 0.719 ([`Transmitted::refit_offset`]):
 /// [`FrostbiteRefit`].
 impl FrostbiteVariant for Refitted {
-    const TT_OFFSET: f64 = Transmitted::Tt.refit_offset();
-    const TRT_OFFSET: f64 = Transmitted::Trt.refit_offset();
+    const TT_OFFSET: &'static NamedConstant = &REFIT_TT_OFFSET;
+    const TRT_OFFSET: &'static NamedConstant = &REFIT_TRT_OFFSET;
 }
 
 /// Frostbite's TRT roughness factor `s_r = clamp(1.5 (1 - beta_n), 0, 1)` (Tafuri 2019,
@@ -202,8 +227,8 @@ fn trt_scale_of<R: Real>(beta_n: R) -> R {
 /// Domain: `s_r` in [0, 1]; the result is finite and non-negative, 0 at `s_r = 0`. Its
 /// integral over phi is `2 pi s_r I0(a s_r) e^(b s_r)`: 0.763 at `s_r = 1` (Karis'
 /// lobe), 0.544 at 0.6 (beta_n = 0.6), 0.260 at 0.15 (beta_n = 0.9).
-pub fn d_trt_frostbite<R: Real>(cos_phi: R, s_r: R, c: ExpCosCoefficients) -> R {
-    s_r * (s_r * (R::c(c.a) * cos_phi + R::c(c.b))).exp()
+pub fn d_trt_frostbite<R: Real>(cos_phi: R, s_r: R, c: ExpCosCoefficients<R>) -> R {
+    s_r * (s_r * (c.a * cos_phi + c.b)).exp()
 }
 
 /// The 2D table of Frostbite's TT Gaussians (slide 19): channels `a` and `b` of
@@ -376,14 +401,17 @@ impl<R: Real> FrostbiteAngles<R> {
     fn of(query: &Query<R>) -> Self {
         let a = local_fibre_angles(query.wi, query.wo);
         FrostbiteAngles {
-            sum_of_sines: a.sin_theta_i + a.sin_theta_o,
+            sum_of_sines: (a.sin_theta_i + a.sin_theta_o).label("sum_of_sines"),
             sin_o: a.sin_theta_o,
             cos_o: a.cos_theta_o,
-            abs_theta_o: a.theta_o().abs(),
+            abs_theta_o: a.theta_o().abs().label("abs_theta_o"),
             phi: a.phi,
-            cos_phi: a.phi.cos(),
-            cos_half_phi: (R::c(0.5) * a.phi).cos().max(R::c(0.0)),
-            v_dot_l: query.wi.dot(query.wo),
+            cos_phi: a.phi.cos().label("cos_phi"),
+            cos_half_phi: (R::c(0.5) * a.phi)
+                .cos()
+                .max(R::c(0.0))
+                .label("cos_half_phi"),
+            v_dot_l: query.wi.dot(query.wo).label("v_dot_l"),
         }
     }
 }
@@ -408,10 +436,16 @@ impl<R: Real, V: FrostbiteVariant> FrostbiteHair<R, V> {
 
     /// `A_p(h)` per channel for the ray inclined at theta_o: [`super::offset_attenuation`]'s value,
     /// with the path through the fibre (which does not depend on the channel) traced once.
-    fn attenuation(&self, path: Transmitted, h: f64, a: &FrostbiteAngles<R>) -> [R; 3] {
+    fn attenuation(
+        &self,
+        path: Transmitted,
+        h: &'static NamedConstant,
+        a: &FrostbiteAngles<R>,
+    ) -> [R; 3] {
         let u = &self.uniforms;
-        let refraction = Refraction::new(a.sin_o, a.cos_o, u.eta, R::c(1.0) / u.eta);
-        let through = refraction.path(R::c(h), PathLength::Chord);
+        let inv_eta = (R::c(1.0) / u.eta).label("inv_eta");
+        let refraction = Refraction::new(a.sin_o, a.cos_o, u.eta, inv_eta);
+        let through = refraction.path(h.get(), PathLength::Chord);
         u.sigma_a.map(|s| through.attenuations(s)[path.p()])
     }
 
@@ -429,7 +463,11 @@ impl<R: Real, V: FrostbiteVariant> FrostbiteHair<R, V> {
     fn trt(&self, a: &FrostbiteAngles<R>) -> [R; 3] {
         let u = &self.uniforms;
         let mp = gaussian_lobe(u.width_trt, a.sum_of_sines - u.shift_trt);
-        let d = d_trt_frostbite(a.cos_phi, u.trt_scale, ExpCosCoefficients::PUBLISHED_D_TRT);
+        let d = d_trt_frostbite(
+            a.cos_phi,
+            u.trt_scale,
+            ExpCosCoefficients::named(&KARIS_D_TRT_TABLE),
+        );
         let lobe = mp * d;
         self.attenuation(Transmitted::Trt, V::TRT_OFFSET, a)
             .map(|t| lobe * t)

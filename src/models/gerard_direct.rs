@@ -263,12 +263,12 @@ impl<R: Real> Gerard<R> {
     fn lobes(&self, query: &Query<R>) -> [[R; 3]; 3] {
         let u = &self.uniforms;
         let a = local_fibre_angles(query.wi, query.wo);
-        let (theta_i, theta_o) = (a.theta_i(), a.theta_o());
-        let theta_h = (theta_i + theta_o) * R::c(0.5);
-        let theta_d = (theta_o - theta_i) * R::c(0.5);
+        let (theta_i, theta_o) = (a.theta_i().label("theta_i"), a.theta_o().label("theta_o"));
+        let theta_h = ((theta_i + theta_o) * R::c(0.5)).label("theta_h");
+        let theta_d = ((theta_o - theta_i) * R::c(0.5)).label("theta_d");
         let lobe = |g: R, scale: R, alpha: R| hg_gerard_printed(g, (theta_h - alpha).cos()) * scale;
-        let cos_d = theta_d.cos();
-        let factor = a.cos_theta_i / (cos_d * cos_d).max(u.min_cos2_theta_d);
+        let cos_d = theta_d.cos().label("cos_theta_d");
+        let factor = (a.cos_theta_i / (cos_d * cos_d).max(u.min_cos2_theta_d)).label("factor");
         let [n_r, n_tt, n_trt] = self.n.sample([a.phi.abs(), theta_d.abs()]);
         let r = lobe(u.g_r, u.lobe_scale_r, u.alpha_r) * n_r * factor;
         let tt = lobe(u.g_tt, u.lobe_scale_tt, u.alpha_tt) * n_tt * factor;

@@ -396,6 +396,7 @@ impl<R: Real> KajiyaKay<R> {
         let u = &self.uniforms;
         let (_, cos_i) = local_sin_cos_theta(query.wi);
         let (cos_sum, _) = sum_angle(query.wi, query.wo);
+        let (cos_i, cos_sum) = (cos_i.label("cos_theta_i"), cos_sum.label("cos_sum"));
         [
             scale3(u.kd, cos_i),
             scale3(u.ks, positive_power(cos_sum, u.exponent)),
@@ -598,9 +599,12 @@ impl<R: Real> TressFx<R> {
         let u = &self.uniforms;
         let (_, cos_i) = local_sin_cos_theta(query.wi);
         let (cos_sum, sin_sum) = sum_angle(query.wi, query.wo);
+        let cos_i = cos_i.label("cos_theta_i");
         // cos(theta_i + theta_o - d_1) and cos(theta_i + theta_o + d_2).
-        let primary = cos_sum * u.cos_shift_primary + sin_sum * u.sin_shift_primary;
-        let secondary = cos_sum * u.cos_shift_secondary - sin_sum * u.sin_shift_secondary;
+        let primary =
+            (cos_sum * u.cos_shift_primary + sin_sum * u.sin_shift_primary).label("cos_primary");
+        let secondary = (cos_sum * u.cos_shift_secondary - sin_sum * u.sin_shift_secondary)
+            .label("cos_secondary");
         [
             scale3(u.kd, cos_i),
             scale3(u.ks_primary, positive_power(primary, u.exponent_primary)),

@@ -73,6 +73,8 @@ pub use kajiya_kay::{
 pub use karis::{
     d_karis, d_karis_of_cos, h_tt_karis, h_tt_karis_of_cos, inverse_eta_prime_karis,
     scaled_eta_prime_karis, EtaPrimeCoefficients, ExpCosCoefficients, HTtCoefficients,
+    KARIS_D_TRT_TABLE, KARIS_D_TT_TABLE, KARIS_ETA_PRIME_TABLE, KARIS_H_TT_TABLE,
+    REFIT_D_TRT_TABLE, REFIT_D_TT_TABLE, REFIT_ETA_PRIME_TABLE, REFIT_H_TT_TABLE,
 };
 pub use scheuermann::{
     Scheuermann, ScheuermannParams, ScheuermannUniforms, StrandLobe, SCHEUERMANN_LOBES,

@@ -230,13 +230,16 @@ impl<R: Real> NguyenDonnelly<R> {
     fn lobes(&self, query: &Query<R>) -> [[R; 3]; 3] {
         let (sin_i, cos_i) = local_sin_cos_theta(query.wi);
         let (sin_o, cos_o) = local_sin_cos_theta(query.wo);
+        let (sin_i, cos_i) = (sin_i.label("sin_theta_i"), cos_i.label("cos_theta_i"));
+        let (sin_o, cos_o) = (sin_o.label("sin_theta_o"), cos_o.label("cos_theta_o"));
         // The M texture's fourth channel holds cos theta_d as the slides read it; it is
         // computed from the directions instead (module docs, "Deviation").
         let [m_r, m_tt, m_trt, _] = self.m.sample([sin_i, sin_o]);
-        let cos_d = safe_sqrt((R::c(1.0) + cos_i * cos_o + sin_i * sin_o) * R::c(0.5));
-        let cos_phi = cos_relative_azimuth(query.wi, query.wo);
+        let cos_d =
+            safe_sqrt((R::c(1.0) + cos_i * cos_o + sin_i * sin_o) * R::c(0.5)).label("cos_theta_d");
+        let cos_phi = cos_relative_azimuth(query.wi, query.wo).label("cos_phi");
         let [tt_r, tt_g, tt_b, n_r, trt_r, trt_g, trt_b] = self.n.sample([cos_phi, cos_d]);
-        let factor = cos_i / (cos_d * cos_d).max(self.uniforms.min_cos2_theta_d);
+        let factor = (cos_i / (cos_d * cos_d).max(self.uniforms.min_cos2_theta_d)).label("factor");
         let (r, tt, trt) = (m_r * factor, m_tt * factor, m_trt * factor);
         [
             [r * n_r; 3],

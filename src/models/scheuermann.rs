@@ -121,7 +121,7 @@ use crate::error::ParamError;
 use crate::geometry::local_sin_cos_theta;
 use crate::params::HairParams;
 use crate::quadrature::adaptive;
-use crate::real::{Real, TINY};
+use crate::real::{NamedConstant, Real, TINY};
 use core::f64::consts::PI;
 
 /// The lobes of [`Scheuermann`], in the order of [`Bcsdf::eval_lobes`].
@@ -129,9 +129,18 @@ pub const SCHEUERMANN_LOBES: [&str; 3] = ["diffuse", "primary", "secondary"];
 
 /// The scale of the diffuse's scaled-and-biased Lambert term: `mix(0.25, 1, x) = 0.25 +
 /// 0.75 x`.
-const DIFFUSE_SCALE: f64 = 0.75;
+static DIFFUSE_SCALE: NamedConstant = NamedConstant {
+    name: "DIFFUSE_SCALE",
+    meaning:
+        "0.75, the scale of the diffuse's mix(0.25, 1, N.L) = 0.25 + 0.75 N.L (Scheuermann 2004)",
+    values: &[0.75],
+};
 /// Its bias.
-const DIFFUSE_BIAS: f64 = 0.25;
+static DIFFUSE_BIAS: NamedConstant = NamedConstant {
+    name: "DIFFUSE_BIAS",
+    meaning: "0.25, the bias of the diffuse's mix(0.25, 1, N.L) (Scheuermann 2004)",
+    values: &[0.25],
+};
 
 /// The albedo of the diffuse term of unit weight, `4 pi / 3` (module docs).
 const DIFFUSE_ALBEDO: f64 = 4.0 * PI / 3.0;
@@ -295,14 +304,17 @@ impl<R: Real> Scheuermann<R> {
         let (_, cos_o) = local_sin_cos_theta(wo);
         let defined = tiny.lt(cos_o);
         let inv_cos_o = one / cos_o.max(tiny);
-        let n_y = R::select(defined, wo.y * inv_cos_o, one);
-        let n_z = R::select(defined, wo.z * inv_cos_o, zero);
+        let n_y = R::select(defined, wo.y * inv_cos_o, one).label("normal_y");
+        let n_z = R::select(defined, wo.z * inv_cos_o, zero).label("normal_z");
         let n_dot_l = wi.y * n_y + wi.z * n_z;
-        let diffuse = (R::c(DIFFUSE_BIAS) + R::c(DIFFUSE_SCALE) * n_dot_l).clamp(zero, one);
+        let diffuse = (DIFFUSE_BIAS.get::<R>() + DIFFUSE_SCALE.get::<R>() * n_dot_l)
+            .clamp(zero, one)
+            .label("diffuse");
         // The half vector's components along u and N (0 where wi = -wo).
         let (sx, sy, sz) = (wi.x + wo.x, wi.y + wo.y, wi.z + wo.z);
         let inv_length = one / (sx * sx + sy * sy + sz * sz).sqrt().max(tiny);
-        let (h_t, h_n) = (sx * inv_length, (sy * n_y + sz * n_z) * inv_length);
+        let h_t = (sx * inv_length).label("half_t");
+        let h_n = ((sy * n_y + sz * n_z) * inv_length).label("half_n");
         let primary = strand_lobe(
             h_t,
             h_n,

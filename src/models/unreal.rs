@@ -114,7 +114,9 @@ use core::marker::PhantomData;
 use super::approximation::Approximation;
 use super::karis::{
     d_karis_of_cos, h_tt_karis_of_cos, inverse_eta_prime_karis, EtaPrimeCoefficients,
-    ExpCosCoefficients, HTtCoefficients,
+    ExpCosCoefficients, HTtCoefficients, KARIS_D_TRT_TABLE, KARIS_D_TT_TABLE,
+    KARIS_ETA_PRIME_TABLE, KARIS_H_TT_TABLE, REFIT_D_TRT_TABLE, REFIT_D_TT_TABLE,
+    REFIT_ETA_PRIME_TABLE, REFIT_H_TT_TABLE,
 };
 use crate::absorption::log_color_of_sigma_a;
 use crate::absorption::Absorption;
@@ -156,6 +158,13 @@ static ETA: NamedConstant = NamedConstant {
     meaning: "1.55, the refractive index of UE's Hair_F",
     values: &[1.55],
 };
+/// The TRT lobe's absorption as a power of the BaseColor: `Tp = BaseColor^(0.8 / cos theta_d)`
+/// (`HairShading`; exponentiated as `exp(log_color * 0.8 / cos theta_d)`).
+static TRT_COLOR_EXPONENT: NamedConstant = NamedConstant {
+    name: "TRT_COLOR_EXPONENT",
+    meaning: "0.8, the TRT lobe's Tp = BaseColor^(0.8 / cos theta_d) (HairShading)",
+    values: &[0.8],
+};
 /// UE's lower clamp of the Roughness, `1/255`.
 const MIN_ROUGHNESS: f64 = 1.0 / 255.0;
 /// The regulariser of UE's `cos phi = Lp . Vp * rsqrt(|Lp|^2 |Vp|^2 + 1e-4)`.
@@ -167,35 +176,38 @@ static COS_PHI_EPSILON: NamedConstant = NamedConstant {
 /// Absorption above this (per radius) is clamped, so that `f32` uniforms stay finite.
 const MAX_SIGMA_A: f64 = 1e30;
 
-/// The fitted constants of one variant of Karis' closed forms.
+/// The fitted constants of one variant of Karis' closed forms: named tables of two
+/// coefficients each, which shader code declares as constants.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct KarisConstants {
-    /// Bravais' index `eta' ~ a / cos theta_d + b cos theta_d`.
-    pub eta_prime: EtaPrimeCoefficients,
-    /// The TT distribution `exp(a cos phi + b)`.
-    pub d_tt: ExpCosCoefficients,
-    /// The TRT distribution `exp(a cos phi + b)`.
-    pub d_trt: ExpCosCoefficients,
-    /// The TT offset `(1 + a (c1 - c2 cos phi)) cos(phi/2)`.
-    pub h_tt: HTtCoefficients,
+    /// Bravais' index `eta' ~ a / cos theta_d + b cos theta_d`: `[a, b]`
+    /// ([`EtaPrimeCoefficients`]).
+    pub eta_prime: &'static NamedConstant,
+    /// The TT distribution `exp(a cos phi + b)`: `[a, b]` ([`ExpCosCoefficients`]).
+    pub d_tt: &'static NamedConstant,
+    /// The TRT distribution `exp(a cos phi + b)`: `[a, b]` ([`ExpCosCoefficients`]).
+    pub d_trt: &'static NamedConstant,
+    /// The TT offset `(1 + a (c1 - c2 cos phi)) cos(phi/2)`: `[c1, c2]` ([`HTtCoefficients`]).
+    pub h_tt: &'static NamedConstant,
 }
 
 impl KarisConstants {
     /// UE 4.27's constants (Karis 2016): `1.19, 0.36`; `-3.65, -3.98`; `17, -16.78`;
-    /// `0.6, 0.8`.
+    /// `0.6, 0.8` ([`EtaPrimeCoefficients::PUBLISHED`] and the other `PUBLISHED` sets).
     pub const PUBLISHED: Self = Self {
-        eta_prime: EtaPrimeCoefficients::PUBLISHED,
-        d_tt: ExpCosCoefficients::PUBLISHED_D_TT,
-        d_trt: ExpCosCoefficients::PUBLISHED_D_TRT,
-        h_tt: HTtCoefficients::PUBLISHED,
+        eta_prime: &KARIS_ETA_PRIME_TABLE,
+        d_tt: &KARIS_D_TT_TABLE,
+        d_trt: &KARIS_D_TRT_TABLE,
+        h_tt: &KARIS_H_TT_TABLE,
     };
     /// hairmath's refits of the same closed forms against their exact references
-    /// (`src/models/constants.rs`, `hairmath fit`).
+    /// (`src/models/constants.rs`, `hairmath fit`; [`EtaPrimeCoefficients::REFIT`] and the
+    /// other `REFIT` sets).
     pub const REFIT: Self = Self {
-        eta_prime: EtaPrimeCoefficients::REFIT,
-        d_tt: ExpCosCoefficients::REFIT_D_TT,
-        d_trt: ExpCosCoefficients::REFIT_D_TRT,
-        h_tt: HTtCoefficients::REFIT,
+        eta_prime: &REFIT_ETA_PRIME_TABLE,
+        d_tt: &REFIT_D_TT_TABLE,
+        d_trt: &REFIT_D_TRT_TABLE,
+        h_tt: &REFIT_H_TT_TABLE,
     };
 }
 
@@ -408,21 +420,23 @@ impl<R: Real> UnrealAngles<R> {
     fn of(query: &Query<R>) -> Self {
         let (wi, wo) = (query.wi, query.wo);
         let one = R::c(1.0);
-        let sin_l = (-wi.x).clamp(-one, one);
-        let sin_v = (-wo.x).clamp(-one, one);
+        let sin_l = (-wi.x).clamp(-one, one).label("sin_l");
+        let sin_v = (-wo.x).clamp(-one, one).label("sin_v");
         let theta_d = R::c(0.5) * (safe_asin(sin_v) - safe_asin(sin_l)).abs();
         let projected = wi.y * wo.y + wi.z * wo.z;
         let (lp2, vp2) = (wi.y * wi.y + wi.z * wi.z, wo.y * wo.y + wo.z * wo.z);
-        let cos_phi = projected / (lp2 * vp2 + COS_PHI_EPSILON.get()).sqrt();
+        let cos_phi = (projected / (lp2 * vp2 + COS_PHI_EPSILON.get()).sqrt()).label("cos_phi");
         UnrealAngles {
-            sum_of_sines: sin_l + sin_v,
+            sum_of_sines: (sin_l + sin_v).label("sum_of_sines"),
             sin_v,
             // Floored before it divides: at `wi = -wo` along the tangent theta_d = 90 degrees,
             // where single precision rounds `cos(pi/2)` to a negative number.
-            cos_theta_d: theta_d.cos().max(TINY.get()),
+            cos_theta_d: theta_d.cos().max(TINY.get()).label("cos_theta_d"),
             cos_phi,
-            cos_half_phi: saturate(R::c(0.5) + R::c(0.5) * cos_phi).sqrt(),
-            v_dot_l: wo.dot(wi),
+            cos_half_phi: saturate(R::c(0.5) + R::c(0.5) * cos_phi)
+                .sqrt()
+                .label("cos_half_phi"),
+            v_dot_l: wo.dot(wi).label("v_dot_l"),
         }
     }
 }
@@ -461,11 +475,13 @@ impl<R: Real, V: KarisVariant> KarisHair<R, V> {
         let c = V::CONSTANTS;
         let one = R::c(1.0);
         let mp = gaussian_lobe(self.uniforms.width_tt, a.sum_of_sines - SHIFT.get());
-        let inv_eta_prime = inverse_eta_prime_karis(a.cos_theta_d, c.eta_prime);
-        let h = h_tt_karis_of_cos(inv_eta_prime, a.cos_phi, a.cos_half_phi, c.h_tt);
+        let eta_prime = EtaPrimeCoefficients::named(c.eta_prime);
+        let inv_eta_prime = inverse_eta_prime_karis(a.cos_theta_d, eta_prime);
+        let h_tt = HTtCoefficients::named(c.h_tt);
+        let h = h_tt_karis_of_cos(inv_eta_prime, a.cos_phi, a.cos_half_phi, h_tt);
         let f = fresnel_schlick(a.cos_theta_d * saturate(one - h * h).sqrt(), ETA.get());
         let fp = (one - f).sqr();
-        let np = d_karis_of_cos(a.cos_phi, c.d_tt);
+        let np = d_karis_of_cos(a.cos_phi, ExpCosCoefficients::named(c.d_tt));
         let lobe = mp * np * fp;
         // The listing's path (README errata): 2 |1 - (h a)^2 / cos theta_d|.
         let path = R::c(2.0) * (one - (h * inv_eta_prime).sqr() / a.cos_theta_d).abs();
@@ -478,9 +494,9 @@ impl<R: Real, V: KarisVariant> KarisHair<R, V> {
         let mp = gaussian_lobe(self.uniforms.width_trt, a.sum_of_sines - TRT_SHIFT.get());
         let f = fresnel_schlick(a.cos_theta_d * R::c(0.5), ETA.get());
         let fp = (R::c(1.0) - f).sqr() * f;
-        let np = d_karis_of_cos(a.cos_phi, c.d_trt);
+        let np = d_karis_of_cos(a.cos_phi, ExpCosCoefficients::named(c.d_trt));
         let lobe = mp * np * fp;
-        let exponent = R::c(0.8) / a.cos_theta_d;
+        let exponent = TRT_COLOR_EXPONENT.get::<R>() / a.cos_theta_d;
         self.uniforms.log_color.map(|l| lobe * (l * exponent).exp())
     }
 

@@ -121,6 +121,17 @@ pub trait Real:
         Self::c(constant.values[index])
     }
 
+    /// `self`, named `name` in shader code (`let name = ...;`), so that a value the Rust
+    /// code names (`cos_phi`, `cos_theta_d`) keeps its name there: the identity in every
+    /// instantiation but the tracer, which records the name with the value's node (the first
+    /// name given to a node is kept). Names are lower-case identifiers of the shading
+    /// languages; the shader's writer numbers one that is taken (`cos_phi_1`).
+    #[inline(always)]
+    fn label(self, name: &'static str) -> Self {
+        let _ = name;
+        self
+    }
+
     /// `body(args)`, marked as the shader function `function`: the `f32`, `f64` and SIMD
     /// instantiations just call `body`; the tracer records `body` once as a named function
     /// of the graph ([`Graph::functions`]) and here a call of it, so the emitted shader calls

@@ -138,6 +138,19 @@ pub struct Body {
     pub calls: Vec<CallSite>,
     /// The nodes returned, in order.
     pub outputs: Vec<u32>,
+    /// Names of values for the written code ([`Real::label`](super::Real::label)): `(node,
+    /// name)`, at most one per node, in the order given.
+    pub labels: Vec<(u32, &'static str)>,
+}
+
+impl Body {
+    /// The name [`Real::label`](super::Real::label) gave node `node`, if any.
+    pub fn label(&self, node: u32) -> Option<&'static str> {
+        self.labels
+            .iter()
+            .find(|&&(n, _)| n == node)
+            .map(|&(_, name)| name)
+    }
 }
 
 /// One call of a [`Function`] of the graph from a [`Body`].
@@ -245,6 +258,7 @@ pub(super) fn flatten(
         nodes: flat.nodes,
         calls: Vec::new(),
         outputs,
+        labels: Vec::new(),
     }
 }
 

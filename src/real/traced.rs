@@ -203,6 +203,22 @@ impl ResultType {
             ResultType::Fields(fields) => Some(fields.iter().map(|(_, s)| s.width()).sum()),
         }
     }
+
+    /// The name of the field that output `output` is, if it is a scalar field of a
+    /// [`ResultType::Fields`] (`None` for a vector's component or another result type).
+    pub fn scalar_field(self, output: usize) -> Option<&'static str> {
+        let ResultType::Fields(fields) = self else {
+            return None;
+        };
+        let mut first = 0;
+        for &(name, shape) in fields {
+            if output == first {
+                return (shape.width() == 1).then_some(name);
+            }
+            first += shape.width();
+        }
+        None
+    }
 }
 
 /// The arguments and result of a traced function. The closure of [`trace_with`] receives one
@@ -441,6 +457,16 @@ impl Recorder {
         });
         let frame = self.top();
         (frame.intern(node), frame.trace)
+    }
+
+    /// Names the node `node` of the frame `trace` `name`, unless it has a name (a value of no
+    /// running frame is left unnamed: names only serve the written code).
+    fn label(&mut self, node: u32, trace: u32, name: &'static str) {
+        if let Some(frame) = self.frames.iter_mut().find(|f| f.trace == trace) {
+            if frame.body.label(node).is_none() {
+                frame.body.labels.push((node, name));
+            }
+        }
     }
 
     /// The index of a traced body as a function of the graph: an equal earlier function, or
@@ -1454,6 +1480,10 @@ impl Real for Traced {
         let constant = with_recorder(|rec| rec.add_named(constant));
         let index = index as u32;
         Traced::from_record(record(Node::Named { constant, index }, &[]))
+    }
+    fn label(self, name: &'static str) -> Self {
+        with_recorder(|rec| rec.label(self.node, self.trace, name));
+        self
     }
     fn sqrt(self) -> Self {
         self.unary(Unary::Sqrt)

@@ -306,22 +306,7 @@ impl<'a> Lowering<'a> {
                     return helper.clone();
                 }
                 let k = shared.tables.len();
-                let first = shared.bindings.len() as u32;
-                let (helper, bindings) = tables::declare_table(&mut shared.module, k, t, first);
-                let name = tables::table_name(k, t);
-                shared.names.insert(name.clone());
-                shared.comments.push((
-                    name,
-                    vec![format!(
-                        "table {k} ({}): {} axes, {} channels; multilinear interpolation of \
-                         texels read with textureLoad, in the operation order of \
-                         hairmath::lut::Table::lookup_into",
-                        t.meta().kind,
-                        t.axes().len(),
-                        t.channels().len()
-                    )],
-                ));
-                shared.bindings.extend(bindings);
+                let helper = tables::declare_table(shared, k, t);
                 shared.tables.push((Arc::clone(t), helper.clone()));
                 helper
             })
@@ -348,7 +333,9 @@ impl<'a> Lowering<'a> {
     }
 
     /// Marks the functions reachable from the top-level body's live calls and names their
-    /// captured parameters after the first call site's arguments where they have a name.
+    /// captured parameters after the first call site's arguments where they have a name (a
+    /// parameter's, a constant's, a struct result's field or a label's,
+    /// [`crate::real::Real::label`]).
     fn name_captures(&mut self) {
         let view = self.view;
         let top_names = top_scalar_names(view);
@@ -386,7 +373,8 @@ impl<'a> Lowering<'a> {
                 let hint = match body.nodes[arg as usize] {
                     Node::Input(k) => input_names.get(k as usize).cloned(),
                     Node::Global(k) => global_names.get(k as usize).cloned(),
-                    _ => None,
+                    Node::Result { site, output } => self.result_field(body, site, output),
+                    _ => body.label(arg).map(str::to_string),
                 };
                 let name = match hint {
                     Some(h) if !taken.contains(&h) => h,
@@ -399,6 +387,16 @@ impl<'a> Lowering<'a> {
                 names.push(name);
             }
             self.capture_names[callee] = names;
+        }
+    }
+
+    /// The field name of output `output` of call site `site` of `body`, if its callee returns
+    /// a struct and that output is a scalar field of it.
+    fn result_field(&self, body: &Body, site: u32, output: u32) -> Option<String> {
+        let call = body.calls.get(site as usize)?;
+        match self.view.functions().get(call.function as usize)?.kind {
+            FunctionKind::Function(f) => f.result.scalar_field(output as usize).map(str::to_string),
+            FunctionKind::LoopBody(_) => None,
         }
     }
 
@@ -962,6 +960,9 @@ impl<'a> Lowering<'a> {
                     self.site_output(b, &mut ctx, site, call, output)?
                 }
             };
+            if let Some(name) = body.label(i as u32) {
+                b.label(h, name);
+            }
             ctx.values[i] = Some(h);
         }
         body.outputs

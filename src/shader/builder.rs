@@ -92,6 +92,17 @@ impl FnBuilder {
         self.function.named_expressions.insert(h, name.to_string());
     }
 
+    /// Names `h` for a value the Rust code named ([`crate::real::Real::label`]), unless it
+    /// has a name or is not a computed value (an argument, a literal, a constant or a call's
+    /// result, which naga's writers name themselves).
+    pub fn label(&mut self, h: Handle<Expression>, name: &str) {
+        let e = &self.function.expressions[h];
+        let computed = !e.needs_pre_emit() && !matches!(e, Expression::CallResult(_));
+        if computed && !self.function.named_expressions.contains_key(&h) {
+            self.name(h, name);
+        }
+    }
+
     fn literal(&mut self, key: LiteralKey, literal: Literal) -> Handle<Expression> {
         if let Some(&h) = self.literals.get(&key) {
             return h;

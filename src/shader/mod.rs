@@ -488,22 +488,25 @@ impl ShaderModule {
         }
     }
 
-    /// `text` with the top-level functions' argument names restored and the comments.
+    /// `text` with the names of every function's arguments and labelled values restored
+    /// ([`names::restore_names`]), and the comments.
     fn comment(&self, text: &str, lang: Lang) -> String {
         let module = self.module();
-        let tops: Vec<(String, Vec<String>)> = self
-            .tops
+        let functions: Vec<(String, Vec<String>)> = module
+            .functions
             .iter()
-            .map(|t| {
-                let args = module.functions[t.handle]
-                    .arguments
-                    .iter()
-                    .filter_map(|a| a.name.clone())
-                    .collect();
-                (t.name.clone(), args)
+            .filter_map(|(_, f)| {
+                let arguments = f.arguments.iter();
+                let mut wanted: Vec<String> = arguments.filter_map(|a| a.name.clone()).collect();
+                for label in f.named_expressions.values() {
+                    if !wanted.contains(label) {
+                        wanted.push(label.clone());
+                    }
+                }
+                Some((f.name.clone()?, wanted))
             })
             .collect();
-        let text = names::restore_arguments(text, lang, &tops);
+        let text = names::restore_names(text, lang, &functions);
         write::insert_comments(&text, lang, &self.comments, &self.bindings)
     }
 

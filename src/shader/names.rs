@@ -6,7 +6,9 @@
 //! the top-level functions' arguments, the constants, textures, types and functions -- are
 //! protected here: in the IR, other functions' arguments and locals of those names get a
 //! suffix (`wi_in`, `k_var`); in the written text, a later top-level function's arguments
-//! get their own names back where naga had to number them (`wi_1` -> `wi`).
+//! get their own names back where naga had to number them (`wi_1` -> `wi`), and so do every
+//! function's arguments and the values the Rust code labelled ([`crate::real::Real::label`]:
+//! `cos_phi_2` -> `cos_phi`).
 
 use super::body::Top;
 use super::write::Lang;
@@ -63,13 +65,15 @@ fn rename(name: &mut Option<String>, suffix: &str, reserved: &HashSet<String>) {
     }
 }
 
-/// Gives the arguments of each top-level function `(name, argument names)` their own names
-/// back in `text` where the back end numbered them (`wi_1`), when that is safe: the name
-/// does not occur in the function (so nothing it refers to is shadowed) and the back end
-/// wrote it elsewhere as an identifier (so it is no keyword of the language).
-pub(super) fn restore_arguments(text: &str, lang: Lang, tops: &[(String, Vec<String>)]) -> String {
+/// Gives each function `(name, wanted names)` -- its arguments and labelled values
+/// ([`crate::real::Real::label`]) -- its names back in `text` where
+/// the back end numbered them (`wi_1`, `cos_phi_2`), when that is safe: the name does not
+/// occur in the function (so nothing it refers to is shadowed, and a name wanted twice is
+/// given back once) and the back end wrote it elsewhere as an identifier (so it is no keyword
+/// of the language).
+pub(super) fn restore_names(text: &str, lang: Lang, functions: &[(String, Vec<String>)]) -> String {
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    for (function, arguments) in tops {
+    for (function, arguments) in functions {
         let Some(start) = lines
             .iter()
             .position(|l| super::write::is_definition(l, function, lang))
@@ -169,7 +173,7 @@ mod tests {
         let text = "fn f(wi: vec3<f32>) -> f32 {\n    return wi.x;\n}\n\n\
                     fn g(wi_1: vec3<f32>, h_2: f32) -> f32 {\n    return wi_1.x + h_2 + f(wi_1);\n}\n";
         let tops = [("g".to_string(), vec!["wi".to_string(), "h".to_string()])];
-        let out = restore_arguments(text, Lang::Wgsl, &tops);
+        let out = restore_names(text, Lang::Wgsl, &tops);
         // `h` is written nowhere else: it might be a keyword, so `h_2` stays.
         assert!(
             out.contains(
@@ -182,6 +186,6 @@ mod tests {
         let shadowing =
             "var<private> wi: f32;\nfn g(wi_1: f32) -> f32 {\n    return wi_1 + wi;\n}\n";
         let tops = [("g".to_string(), vec!["wi".to_string()])];
-        assert_eq!(restore_arguments(shadowing, Lang::Wgsl, &tops), shadowing);
+        assert_eq!(restore_names(shadowing, Lang::Wgsl, &tops), shadowing);
     }
 }

@@ -2,14 +2,14 @@
 //! with `textureLoad`, and one generated helper function per table that interpolates the
 //! texels in shader arithmetic in exactly the order of [`Table::lookup_into`].
 
-use super::body::math;
+use super::body::{math, Shared};
 use super::builder::FnBuilder;
 use super::types;
 use super::{TextureBinding, TABLE_GROUP, TEXTURE_CHANNELS};
 use crate::lut::Table;
 use naga::{
-    AddressSpace, BinaryOperator, Expression, Function, GlobalVariable, Handle, MathFunction,
-    Module, ResourceBinding, Scalar, ScalarKind, Span, VectorSize,
+    AddressSpace, BinaryOperator, Constant, Expression, Function, GlobalVariable, Handle, Literal,
+    MathFunction, Module, ResourceBinding, Scalar, ScalarKind, Span, VectorSize,
 };
 
 /// The helper function of one table.
@@ -48,21 +48,18 @@ fn identifier(text: &str) -> String {
     out.trim_end_matches('_').to_string()
 }
 
-/// Declares the textures of table `k` of the module (bindings from `first_binding` in
-/// [`TABLE_GROUP`]) and its helper function; returns the helper and the bindings.
-pub(super) fn declare_table(
-    module: &mut Module,
-    k: usize,
-    table: &Table,
-    first_binding: u32,
-) -> (TableHelper, Vec<TextureBinding>) {
+/// Declares table `k` of the module in `shared`: its textures (bindings from the next free one
+/// in [`TABLE_GROUP`]), its axis constants ([`declare_axes`]) and its helper function, with
+/// their comments; returns the helper.
+pub(super) fn declare_table(shared: &mut Shared, k: usize, table: &Table) -> TableHelper {
     let name = table_name(k, table);
     let dims = table.axes().len();
     let channels = table.channels();
     let count = channels.len().div_ceil(TEXTURE_CHANNELS);
+    let first_binding = shared.bindings.len() as u32;
+    let module = &mut shared.module;
     let ty = types::texture(module, dims);
     let mut globals = Vec::with_capacity(count);
-    let mut bindings = Vec::with_capacity(count);
     for t in 0..count {
         let texture_name = if count == 1 {
             format!("{name}_texels")
@@ -85,7 +82,7 @@ pub(super) fn declare_table(
             Span::UNDEFINED,
         ));
         let end = ((t + 1) * TEXTURE_CHANNELS).min(channels.len());
-        bindings.push(TextureBinding {
+        shared.bindings.push(TextureBinding {
             group: TABLE_GROUP,
             binding,
             name: texture_name,
@@ -101,48 +98,113 @@ pub(super) fn declare_table(
             channels: channels[t * TEXTURE_CHANNELS..end].to_vec(),
         });
     }
-    let function = helper(module, &name, table, &globals);
-    let helper = TableHelper {
+    let axes = declare_axes(shared, &name, table);
+    let function = helper(&mut shared.module, &name, table, &globals, &axes);
+    shared.names.insert(name.clone());
+    shared.comments.push((
+        name,
+        vec![format!(
+            "table {k} ({}): {} axes, {} channels; multilinear interpolation of texels read \
+             with textureLoad, in the operation order of hairmath::lut::Table::lookup_into: \
+             per axis t = clamp((x - MIN) * SCALE, 0, 1) * (n - 1) over its n texels",
+            table.meta().kind,
+            dims,
+            channels.len()
+        )],
+    ));
+    TableHelper {
         function,
         dims,
         channels: channels.len() as u32,
         textures: count,
-    };
-    (helper, bindings)
+    }
+}
+
+/// The module constants of one axis of a table: its first sample and `1 / (last - first)`.
+struct AxisConstants {
+    min: Handle<Constant>,
+    scale: Handle<Constant>,
+}
+
+/// Declares per axis of table `name` the constants `NAME_AXIS_MIN` and `NAME_AXIS_SCALE`
+/// (upper case; `X0`, `X1`... for an axis without a usable name), with comments.
+fn declare_axes(shared: &mut Shared, name: &str, table: &Table) -> Vec<AxisConstants> {
+    let arguments = axis_arguments(table);
+    table
+        .axes()
+        .iter()
+        .zip(&arguments)
+        .map(|(a, argument)| {
+            let prefix = format!("{name}_{argument}").to_ascii_uppercase();
+            let mut constant = |suffix: &str, value: f64, meaning: String| {
+                let constant_name = format!("{prefix}_{suffix}");
+                let module = &mut shared.module;
+                let f32t = types::f32(module);
+                let init = module.global_expressions.append(
+                    Expression::Literal(Literal::F32(value as f32)),
+                    Span::UNDEFINED,
+                );
+                let handle = module.constants.append(
+                    Constant {
+                        name: Some(constant_name.clone()),
+                        ty: f32t,
+                        init,
+                    },
+                    Span::UNDEFINED,
+                );
+                shared.names.insert(constant_name.clone());
+                shared.comments.push((constant_name, vec![meaning]));
+                handle
+            };
+            let (axis, min, max) = (a.name(), a.min(), a.max());
+            AxisConstants {
+                min: constant("MIN", min, format!("{axis} at the first texel of {name}")),
+                scale: constant(
+                    "SCALE",
+                    1.0 / (max - min),
+                    format!("1 / ({max} - {min}), {axis} to [0, 1] across {name}'s texels"),
+                ),
+            }
+        })
+        .collect()
+}
+
+/// The helper's argument names, one per axis: the axis' name as an identifier, or `x{d}` if it
+/// has none, starts with a digit or repeats an earlier one.
+fn axis_arguments(table: &Table) -> Vec<String> {
+    let mut used: Vec<String> = Vec::new();
+    for (d, a) in table.axes().iter().enumerate() {
+        let mut arg = identifier(a.name());
+        if arg.is_empty() || arg.starts_with(|c: char| c.is_ascii_digit()) || used.contains(&arg) {
+            arg = format!("x{d}");
+        }
+        used.push(arg);
+    }
+    used
 }
 
 /// The interpolation helper of `table` reading the textures `globals`:
 ///
-/// per axis `d` ([`crate::lut::axis_cell`] in `f32`): `u = min(max((x - min) * (1 / (max -
-/// min)), 0), 1)`, `t = u * (n - 1)`, `i0 = min(floor(t), n - 2)`, `f = t - i0`; then for
-/// the corners `c` in 0..2^D (axis `d` upper when bit `d` of `c` is set), `w = 1.0 * (1 - f0
-/// or f0) * ...` and `acc += w * textureLoad(texels, i + bits, 0)`, `acc` starting at 0,
-/// where `i = clamp(i32(i0), 0, n - 2)` (equal to `i0` for every coordinate but NaN).
+/// per axis `d` ([`crate::lut::axis_cell`] in `f32`): `u = min(max((x - MIN) * SCALE, 0),
+/// 1)` with the axis' constants, `t = u * (n - 1)`, `i0 = min(floor(t), n - 2)`, `f = t - i0`;
+/// then for the corners `c` in 0..2^D (axis `d` upper when bit `d` of `c` is set), `w = (1 -
+/// f0 or f0) * (1 - f1 or f1) * ...` and `acc = w * textureLoad(texels, i + bits, 0)` for the
+/// first corner, `acc + w * textureLoad(...)` after it, where `i = clamp(i32(i0), 0, n - 2)`
+/// (equal to `i0` for every coordinate but NaN): the order of `corner_weight` and
+/// `accumulate` in `hairmath::lut`.
 fn helper(
     module: &mut Module,
     name: &str,
     table: &Table,
     globals: &[Handle<GlobalVariable>],
+    axes: &[AxisConstants],
 ) -> Handle<Function> {
     let f32t = types::f32(module);
     let vec4t = types::vec4(module);
     let mut b = FnBuilder::new(name);
-    let mut used = Vec::new();
-    let coords: Vec<Handle<Expression>> = table
-        .axes()
+    let coords: Vec<Handle<Expression>> = axis_arguments(table)
         .iter()
-        .enumerate()
-        .map(|(d, a)| {
-            let mut arg = identifier(a.name());
-            if arg.is_empty()
-                || arg.starts_with(|c: char| c.is_ascii_digit())
-                || used.contains(&arg)
-            {
-                arg = format!("x{d}");
-            }
-            used.push(arg.clone());
-            b.argument(&arg, f32t)
-        })
+        .map(|arg| b.argument(arg, f32t))
         .collect();
     let result = if globals.len() == 1 {
         vec4t
@@ -156,10 +218,10 @@ fn helper(
     let mut upper = Vec::new();
     let mut frac = Vec::new();
     let mut one_minus = Vec::new();
-    for (a, &x) in table.axes().iter().zip(&coords) {
+    for ((a, &x), constants) in table.axes().iter().zip(&coords).zip(axes) {
         let last = (a.size().max(2) - 1) as f64;
-        let min = b.f32(a.min() as f32);
-        let scale = b.f32((1.0 / (a.max() - a.min())) as f32);
+        let min = b.expr(Expression::Constant(constants.min));
+        let scale = b.expr(Expression::Constant(constants.scale));
         let shifted = bin(&mut b, BinaryOperator::Subtract, x, min);
         let scaled = bin(&mut b, BinaryOperator::Multiply, shifted, scale);
         let zero = b.f32(0.0);
@@ -198,16 +260,7 @@ fn helper(
     }
 
     let dims = table.axes().len();
-    let zero = b.f32(0.0);
-    let mut acc: Vec<Handle<Expression>> = globals
-        .iter()
-        .map(|_| {
-            b.expr(Expression::Splat {
-                size: VectorSize::Quad,
-                value: zero,
-            })
-        })
-        .collect();
+    let mut acc: Vec<Option<Handle<Expression>>> = vec![None; globals.len()];
     let images: Vec<Handle<Expression>> = globals
         .iter()
         .map(|&g| b.expr(Expression::GlobalVariable(g)))
@@ -219,14 +272,18 @@ fn helper(
         _ => None,
     };
     for corner in 0..(1usize << dims) {
-        let mut w = b.f32(1.0);
+        let mut w = None;
         let mut index = Vec::with_capacity(dims);
         for d in 0..dims {
             let up = (corner >> d) & 1 == 1;
             let factor = if up { frac[d] } else { one_minus[d] };
-            w = bin(&mut b, BinaryOperator::Multiply, w, factor);
+            w = Some(match w {
+                None => factor,
+                Some(w) => bin(&mut b, BinaryOperator::Multiply, w, factor),
+            });
             index.push(if up { upper[d] } else { lower[d] });
         }
+        let w = w.unwrap_or_else(|| b.f32(1.0));
         let coordinate = match ivec {
             Some(ty) => b.expr(Expression::Compose {
                 ty,
@@ -243,9 +300,16 @@ fn helper(
                 level: Some(level),
             });
             let weighted = bin(&mut b, BinaryOperator::Multiply, w, texel);
-            *slot = bin(&mut b, BinaryOperator::Add, *slot, weighted);
+            *slot = Some(match *slot {
+                None => weighted,
+                Some(sum) => bin(&mut b, BinaryOperator::Add, sum, weighted),
+            });
         }
     }
+    let acc: Vec<Handle<Expression>> = acc
+        .into_iter()
+        .map(|a| a.expect("a table has at least one corner"))
+        .collect();
     let value = if acc.len() == 1 {
         acc[0]
     } else {

@@ -159,3 +159,115 @@ fn a_struct_result_needs_one_output_per_scalar() {
         Traced::call(&FUNCTION, [x[0]], |[x]| [x, x]).to_vec()
     });
 }
+
+/// `x * y` marked as a shader function (its second factor captured when it is a caller's
+/// value).
+fn scaled<R: Real>(x: R, y: R) -> R {
+    const FUNCTION: ShaderFunction = hairmath::shader_function!(scaled, "a test", [x]);
+    R::call(&FUNCTION, [x], |[x]| [x * y])[0]
+}
+
+#[test]
+fn labels_name_values_and_captured_parameters_without_changing_a_bit() {
+    let labelled = trace(2, |x| {
+        let sum = (x[0] + x[1]).label("sum_of_both");
+        let half = (sum * Traced::c(0.5)).label("half_sum");
+        vec![scaled(x[0], half) + sum * sum]
+    });
+    let plain = trace(2, |x| {
+        let sum = x[0] + x[1];
+        let half = sum * Traced::c(0.5);
+        vec![scaled(x[0], half) + sum * sum]
+    });
+    // Labels are for the written code only: the same nodes, the same values.
+    assert_eq!(labelled.nodes(), plain.nodes());
+    let rows = [vec![1.5, -2.0], vec![0.0, 7.0], vec![f32::MAX, 1.0]];
+    for row in &rows {
+        assert_eq!(labelled.eval_f32(row), plain.eval_f32(row));
+    }
+    assert_eq!((3.0_f32).label("x"), 3.0);
+    assert_eq!((-0.0_f64).label("x").to_bits(), (-0.0_f64).to_bits());
+    let module = lower_and_write_everything("labelled", &labelled);
+    let wgsl = module.wgsl().unwrap();
+    assert!(wgsl.contains("let sum_of_both = "), "{wgsl}");
+    // The callee's captured factor is named after the caller's label.
+    assert!(
+        wgsl.contains("fn scaled(x: f32, half_sum: f32) -> f32"),
+        "{wgsl}"
+    );
+    for (lang, text) in [
+        ("GLSL", module.glsl().unwrap()),
+        ("HLSL", module.hlsl().unwrap()),
+    ] {
+        assert!(text.contains("sum_of_both = "), "{lang}\n{text}");
+    }
+    check_bit_for_bit("labelled", &labelled, &rows);
+}
+
+#[test]
+fn a_label_taken_by_a_callee_parameter_is_given_back_where_safe() {
+    // `cos_phi` is a parameter of Karis' `d_karis` and `h_tt_karis` and a label of the
+    // top-level function: naga numbers the later one, the writer gives the name back.
+    let graph = model_graph("karis");
+    let wgsl = lower(&graph, "karis").unwrap().wgsl().unwrap();
+    for expected in [
+        "fn d_karis(cos_phi: f32, a: f32, b: f32) -> f32 {",
+        "    let cos_phi = ",
+        "    let cos_theta_d = ",
+        "    let cos_half_phi = ",
+    ] {
+        assert!(wgsl.contains(expected), "{expected}\n{wgsl}");
+    }
+    assert!(!wgsl.contains("cos_phi_"), "{wgsl}");
+}
+
+/// The baked shader graph of registered model `name` at its example values.
+fn model_graph(name: &str) -> hairmath::real::Graph {
+    let entry = hairmath::registry::find_model(name).unwrap();
+    let shader = entry.shader.as_ref().unwrap();
+    (shader.trace)(&entry.example_values(), &[]).unwrap()
+}
+
+#[test]
+fn karis_coefficients_are_named_tables_passed_to_one_function_per_closed_form() {
+    for (model, prefix) in [("karis", "KARIS"), ("karis-refit", "REFIT")] {
+        let graph = model_graph(model);
+        let wgsl = lower(&graph, model).unwrap().wgsl().unwrap();
+        for table in ["ETA_PRIME", "D_TT", "D_TRT", "H_TT"] {
+            let name = format!("{prefix}_{table}");
+            assert!(
+                wgsl.contains(&format!("const {name}: array<f32, 2> = ")),
+                "{name}\n{wgsl}"
+            );
+            assert!(
+                wgsl.contains(&format!("{name}[0], {name}[1]")),
+                "{name}\n{wgsl}"
+            );
+        }
+        // One d_karis serves TT and TRT.
+        assert_eq!(wgsl.matches("\nfn d_karis").count(), 1, "{wgsl}");
+        let code = code_lines(&wgsl).join("\n");
+        for literal in ["1.19f", "-3.65f", "-16.78f", "0.6f", "0.8f"] {
+            assert!(!code.contains(literal), "{literal} is read by name\n{code}");
+        }
+    }
+}
+
+#[test]
+fn table_axes_are_named_constants() {
+    let graph = model_graph("frostbite");
+    let wgsl = lower(&graph, "frostbite").unwrap().wgsl().unwrap();
+    for expected in [
+        "const LUT0_FROSTBITE_TT_THETA_O_MIN: f32 = 0f;",
+        "const LUT0_FROSTBITE_TT_BETA_N_MIN: f32 = 0.1f;",
+        "(theta_o - LUT0_FROSTBITE_TT_THETA_O_MIN) * LUT0_FROSTBITE_TT_THETA_O_SCALE",
+        "const TRT_OFFSET: f32 = 0.8660254f;",
+    ] {
+        assert!(wgsl.contains(expected), "{expected}\n{wgsl}");
+    }
+    // The weights start from the first factor and the sum from the first term.
+    assert!(
+        !wgsl.contains("vec4(0f)") && !wgsl.contains("(1f * "),
+        "{wgsl}"
+    );
+}

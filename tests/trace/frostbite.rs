@@ -105,7 +105,7 @@ traced_tests! {
             ("refit", ExpCosCoefficients::REFIT_D_TRT),
         ] {
             case!(format!("d_trt_frostbite ({name})"), scalars(&[SIN, TRT_SCALE]), |x| {
-                vec![d_trt_frostbite(x[0], x[1], c)]
+                vec![d_trt_frostbite(x[0], x[1], c.to_real())]
             });
         }
     }

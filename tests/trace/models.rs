@@ -5,7 +5,9 @@ use hairmath::models::{
     d_karis, gerard_attenuation, gerard_eq8_trt_corrected, gerard_eq8_trt_printed, gerard_hg_g,
     h_tt_karis, hg_g_normalised, inverse_eta_prime_karis, offset_attenuation,
     scaled_eta_prime_karis, tt_gaussian, EtaPrimeCoefficients, ExpCosCoefficients, HTtCoefficients,
-    Transmitted, GERARD_K_TRT, GERARD_K_TT,
+    Transmitted, GERARD_K_TRT, GERARD_K_TT, KARIS_D_TRT_TABLE, KARIS_D_TT_TABLE,
+    KARIS_ETA_PRIME_TABLE, KARIS_H_TT_TABLE, REFIT_D_TRT_TABLE, REFIT_D_TT_TABLE,
+    REFIT_ETA_PRIME_TABLE, REFIT_H_TT_TABLE,
 };
 use std::f64::consts::FRAC_PI_4;
 
@@ -71,38 +73,40 @@ traced_tests! {
         });
     }
 
-    // Karis' coefficients are per-shader constants folded into the WGSL: one trace per set.
+    // Karis' coefficients are named tables, read as the models read them: one trace per set.
     karis_eta_prime ["scaled_eta_prime_karis", "inverse_eta_prime_karis"] {
         // cos theta_d in [0, 1], grazing (0) and normal (1) included.
-        for (name, c) in [
-            ("published", EtaPrimeCoefficients::PUBLISHED),
-            ("refit", EtaPrimeCoefficients::REFIT),
-        ] {
+        for (name, table) in [("published", &KARIS_ETA_PRIME_TABLE), ("refit", &REFIT_ETA_PRIME_TABLE)] {
             case!(format!("karis eta' ({name})"), scalars(&[UNIT]), |x| {
+                let c = EtaPrimeCoefficients::named(table);
                 vec![scaled_eta_prime_karis(x[0], c), inverse_eta_prime_karis(x[0], c)]
             });
         }
     }
     karis_d ["d_karis"] {
         // phi = 0 and +-pi, the lobes' peaks.
-        for (name, c) in [
-            ("published TT", ExpCosCoefficients::PUBLISHED_D_TT),
-            ("published TRT", ExpCosCoefficients::PUBLISHED_D_TRT),
-            ("refit TT", ExpCosCoefficients::REFIT_D_TT),
-            ("refit TRT", ExpCosCoefficients::REFIT_D_TRT),
+        for (name, table) in [
+            ("published TT", &KARIS_D_TT_TABLE),
+            ("published TRT", &KARIS_D_TRT_TABLE),
+            ("refit TT", &REFIT_D_TT_TABLE),
+            ("refit TRT", &REFIT_D_TRT_TABLE),
         ] {
-            case!(format!("d_karis ({name})"), scalars(&[ANGLE]), |x| vec![d_karis(x[0], c)]);
+            case!(format!("d_karis ({name})"), scalars(&[ANGLE]), |x| {
+                vec![d_karis(x[0], ExpCosCoefficients::named(table))]
+            });
         }
     }
     karis_h_tt ["h_tt_karis"] {
-        for (name, c) in [("published", HTtCoefficients::PUBLISHED), ("refit", HTtCoefficients::REFIT)] {
+        for (name, table) in [("published", &KARIS_H_TT_TABLE), ("refit", &REFIT_H_TT_TABLE)] {
             case!(format!("h_tt_karis ({name})"), scalars(&[INVERSE_ETA_PRIME, ANGLE]), |x| {
-                vec![h_tt_karis(x[0], x[1], c)]
+                vec![h_tt_karis(x[0], x[1], HTtCoefficients::named(table))]
             });
-            // As a shader chains them: a = 1/eta' from cos theta_d (grazing gives a = 0).
-            let eta_prime = EtaPrimeCoefficients::PUBLISHED;
+            // As a shader chains them: a = 1/eta' from cos theta_d (grazing gives a = 0), with
+            // literal coefficients this time.
+            let (eta_prime, c) = (EtaPrimeCoefficients::PUBLISHED, HTtCoefficients::PUBLISHED);
             case!(format!("h_tt_karis of eta' ({name})"), scalars(&[UNIT, ANGLE]), |x| {
-                vec![h_tt_karis(inverse_eta_prime_karis(x[0], eta_prime), x[1], c)]
+                let a = inverse_eta_prime_karis(x[0], eta_prime.to_real());
+                vec![h_tt_karis(a, x[1], c.to_real())]
             });
         }
     }

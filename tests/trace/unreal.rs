@@ -5,7 +5,8 @@ use super::*;
 use hairmath::absorption::Absorption;
 use hairmath::models::{
     d_karis_of_cos, h_tt_karis_of_cos, ExpCosCoefficients, HTtCoefficients, Karis, KarisHair,
-    KarisRefit, KarisUniforms, KarisVariant, UnrealRoughness,
+    KarisRefit, KarisUniforms, KarisVariant, UnrealRoughness, KARIS_D_TRT_TABLE, KARIS_D_TT_TABLE,
+    KARIS_H_TT_TABLE, REFIT_D_TRT_TABLE, REFIT_D_TT_TABLE, REFIT_H_TT_TABLE,
 };
 use hairmath::params::AzimuthalRoughness;
 
@@ -88,19 +89,19 @@ fn check_unreal<V: KarisVariant>(label: &str) {
 
 traced_tests! {
     karis_of_cos ["d_karis_of_cos", "h_tt_karis_of_cos"] {
-        for (name, c) in [
-            ("published TT", ExpCosCoefficients::PUBLISHED_D_TT),
-            ("published TRT", ExpCosCoefficients::PUBLISHED_D_TRT),
-            ("refit TT", ExpCosCoefficients::REFIT_D_TT),
-            ("refit TRT", ExpCosCoefficients::REFIT_D_TRT),
+        for (name, table) in [
+            ("published TT", &KARIS_D_TT_TABLE),
+            ("published TRT", &KARIS_D_TRT_TABLE),
+            ("refit TT", &REFIT_D_TT_TABLE),
+            ("refit TRT", &REFIT_D_TRT_TABLE),
         ] {
             case!(format!("d_karis_of_cos ({name})"), scalars(&[SIN]), |x| {
-                vec![d_karis_of_cos(x[0], c)]
+                vec![d_karis_of_cos(x[0], ExpCosCoefficients::named(table))]
             });
         }
-        for (name, c) in [("published", HTtCoefficients::PUBLISHED), ("refit", HTtCoefficients::REFIT)] {
+        for (name, table) in [("published", &KARIS_H_TT_TABLE), ("refit", &REFIT_H_TT_TABLE)] {
             case!(format!("h_tt_karis_of_cos ({name})"), scalars(&[INVERSE_ETA_PRIME, SIN, UNIT]), |x| {
-                vec![h_tt_karis_of_cos(x[0], x[1], x[2], c)]
+                vec![h_tt_karis_of_cos(x[0], x[1], x[2], HTtCoefficients::named(table))]
             });
         }
     }
