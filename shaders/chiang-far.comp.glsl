@@ -170,7 +170,7 @@ FarFieldNode far_field_node(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 residual_in
     float _e84 = exit_angle(2.0, _e34.gamma_o, _e34.gamma_t);
     float _e85 = (phi - _e84);
     TrimmedLogistics _e91 = trimmed_logistics((_e67 - (TWO_PI * floor(((_e67 + PI) * INV_TWO_PI)))), (_e77 - (TWO_PI * floor(((_e77 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    return FarFieldNode(vec3((r_in.x + (weight * (_e43.r * _e91.r))), (r_in.y + (weight * (_e52.r * _e91.r))), (r_in.z + (weight * (_e61.r * _e91.r)))), vec3((tt_in.x + (weight * (_e43.tt * _e91.tt))), (tt_in.y + (weight * (_e52.tt * _e91.tt))), (tt_in.z + (weight * (_e61.tt * _e91.tt)))), vec3((trt_in.x + (weight * (_e43.trt * _e91.trt))), (trt_in.y + (weight * (_e52.trt * _e91.trt))), (trt_in.z + (weight * (_e61.trt * _e91.trt)))), vec3((residual_in.x + (weight * (_e43.residual * INV_TWO_PI))), (residual_in.y + (weight * (_e52.residual * INV_TWO_PI))), (residual_in.z + (weight * (_e61.residual * INV_TWO_PI)))));
+    return FarFieldNode((r_in + (weight * (vec3(_e43.r, _e52.r, _e61.r) * _e91.r))), (tt_in + (weight * (vec3(_e43.tt, _e52.tt, _e61.tt) * _e91.tt))), (trt_in + (weight * (vec3(_e43.trt, _e52.trt, _e61.trt) * _e91.trt))), (residual_in + (weight * (vec3(_e43.residual, _e52.residual, _e61.residual) * INV_TWO_PI))));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
@@ -197,10 +197,10 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     uint k = 0u;
     FibreAngles _e30 = fibre_angles(wi, wo);
     float phi = -(_e30.phi);
-    r = vec3(0.0, 0.0, 0.0);
-    tt = vec3(0.0, 0.0, 0.0);
-    trt = vec3(0.0, 0.0, 0.0);
-    residual = vec3(0.0, 0.0, 0.0);
+    r = vec3(0.0);
+    tt = vec3(0.0);
+    trt = vec3(0.0);
+    residual = vec3(0.0);
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
@@ -233,7 +233,7 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     float _e99 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
     float _e107 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
     float _e108 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    return vec3(((((0.0 + (_e91 * _e67.x)) + (_e99 * _e68.x)) + (_e107 * _e69.x)) + (_e108 * _e70.x)), ((((0.0 + (_e91 * _e67.y)) + (_e99 * _e68.y)) + (_e107 * _e69.y)) + (_e108 * _e70.y)), ((((0.0 + (_e91 * _e67.z)) + (_e99 * _e68.z)) + (_e107 * _e69.z)) + (_e108 * _e70.z)));
+    return ((((vec3(0.0) + (_e91 * _e67)) + (_e99 * _e68)) + (_e107 * _e69)) + (_e108 * _e70));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
@@ -246,13 +246,13 @@ FibreFrame fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
+    return FibreFrame((tangent_in * _e13), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
 FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
     FibreFrame _e12 = fibre_frame(tangent);
-    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
+    return FibreLocalDirections((((wi.x * vec3(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wi.y * vec3(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wi.z * vec3(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))), (((wo.x * vec3(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wo.y * vec3(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wo.z * vec3(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions

@@ -169,7 +169,7 @@ fn far_field_node(r_in: vec3<f32>, tt_in: vec3<f32>, trt_in: vec3<f32>, residual
     let _e84 = exit_angle(2f, _e34.gamma_o, _e34.gamma_t);
     let _e85 = (phi - _e84);
     let _e91 = trimmed_logistics((_e67 - (TWO_PI * floor(((_e67 + PI) * INV_TWO_PI)))), (_e77 - (TWO_PI * floor(((_e77 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    return FarFieldNode(vec3<f32>((r_in.x + (weight * (_e43.r * _e91.r))), (r_in.y + (weight * (_e52.r * _e91.r))), (r_in.z + (weight * (_e61.r * _e91.r)))), vec3<f32>((tt_in.x + (weight * (_e43.tt * _e91.tt))), (tt_in.y + (weight * (_e52.tt * _e91.tt))), (tt_in.z + (weight * (_e61.tt * _e91.tt)))), vec3<f32>((trt_in.x + (weight * (_e43.trt * _e91.trt))), (trt_in.y + (weight * (_e52.trt * _e91.trt))), (trt_in.z + (weight * (_e61.trt * _e91.trt)))), vec3<f32>((residual_in.x + (weight * (_e43.residual * INV_TWO_PI))), (residual_in.y + (weight * (_e52.residual * INV_TWO_PI))), (residual_in.z + (weight * (_e61.residual * INV_TWO_PI)))));
+    return FarFieldNode((r_in + (weight * (vec3<f32>(_e43.r, _e52.r, _e61.r) * _e91.r))), (tt_in + (weight * (vec3<f32>(_e43.tt, _e52.tt, _e61.tt) * _e91.tt))), (trt_in + (weight * (vec3<f32>(_e43.trt, _e52.trt, _e61.trt) * _e91.trt))), (residual_in + (weight * (vec3<f32>(_e43.residual, _e52.residual, _e61.residual) * INV_TWO_PI))));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
@@ -197,10 +197,10 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
 
     let _e30 = fibre_angles(wi, wo);
     let phi = -(_e30.phi);
-    r = vec3<f32>(0f, 0f, 0f);
-    tt = vec3<f32>(0f, 0f, 0f);
-    trt = vec3<f32>(0f, 0f, 0f);
-    residual = vec3<f32>(0f, 0f, 0f);
+    r = vec3(0f);
+    tt = vec3(0f);
+    trt = vec3(0f);
+    residual = vec3(0f);
     loop {
         let _e47 = k;
         if (_e47 < 64u) {
@@ -231,7 +231,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e99 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
     let _e107 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
     let _e108 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    return vec3<f32>(((((0f + (_e91 * _e67.x)) + (_e99 * _e68.x)) + (_e107 * _e69.x)) + (_e108 * _e70.x)), ((((0f + (_e91 * _e67.y)) + (_e99 * _e68.y)) + (_e107 * _e69.y)) + (_e108 * _e70.y)), ((((0f + (_e91 * _e67.z)) + (_e99 * _e68.z)) + (_e107 * _e69.z)) + (_e108 * _e70.z)));
+    return ((((vec3(0f) + (_e91 * _e67)) + (_e99 * _e68)) + (_e107 * _e69)) + (_e108 * _e70));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
@@ -244,13 +244,13 @@ fn fibre_frame(tangent_in: vec3<f32>) -> FibreFrame {
     let _e20 = select(1f, _e19, (_e16 < 0f));
     let _e22 = (_e19 / (_e20 + _e16));
     let _e24 = ((_e14 * _e15) * _e22);
-    return FibreFrame(vec3<f32>(_e14, _e15, _e16), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
+    return FibreFrame((tangent_in * _e13), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
 fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> FibreLocalDirections {
     let _e12 = fibre_frame(tangent);
-    return FibreLocalDirections(vec3<f32>((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3<f32>((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
+    return FibreLocalDirections((((wi.x * vec3<f32>(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wi.y * vec3<f32>(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wi.z * vec3<f32>(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))), (((wo.x * vec3<f32>(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wo.y * vec3<f32>(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wo.z * vec3<f32>(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions

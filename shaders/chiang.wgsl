@@ -178,7 +178,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>, h: f32) -> vec3<f32> {
     let _e131 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
     let _e139 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
     let _e140 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    return vec3<f32>(((((0f + (_e123 * (_e53.r * _e99.r))) + (_e131 * (_e53.tt * _e99.tt))) + (_e139 * (_e53.trt * _e99.trt))) + (_e140 * (_e53.residual * INV_TWO_PI))), ((((0f + (_e123 * (_e61.r * _e99.r))) + (_e131 * (_e61.tt * _e99.tt))) + (_e139 * (_e61.trt * _e99.trt))) + (_e140 * (_e61.residual * INV_TWO_PI))), ((((0f + (_e123 * (_e69.r * _e99.r))) + (_e131 * (_e69.tt * _e99.tt))) + (_e139 * (_e69.trt * _e99.trt))) + (_e140 * (_e69.residual * INV_TWO_PI))));
+    return ((((vec3(0f) + (_e123 * (vec3<f32>(_e53.r, _e61.r, _e69.r) * _e99.r))) + (_e131 * (vec3<f32>(_e53.tt, _e61.tt, _e69.tt) * _e99.tt))) + (_e139 * (vec3<f32>(_e53.trt, _e61.trt, _e69.trt) * _e99.trt))) + (_e140 * (vec3<f32>(_e53.residual, _e61.residual, _e69.residual) * INV_TWO_PI)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
@@ -191,13 +191,13 @@ fn fibre_frame(tangent_in: vec3<f32>) -> FibreFrame {
     let _e20 = select(1f, _e19, (_e16 < 0f));
     let _e22 = (_e19 / (_e20 + _e16));
     let _e24 = ((_e14 * _e15) * _e22);
-    return FibreFrame(vec3<f32>(_e14, _e15, _e16), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
+    return FibreFrame((tangent_in * _e13), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
 fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> FibreLocalDirections {
     let _e12 = fibre_frame(tangent);
-    return FibreLocalDirections(vec3<f32>((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3<f32>((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
+    return FibreLocalDirections((((wi.x * vec3<f32>(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wi.y * vec3<f32>(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wi.z * vec3<f32>(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))), (((wo.x * vec3<f32>(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wo.y * vec3<f32>(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wo.z * vec3<f32>(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions

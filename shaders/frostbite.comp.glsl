@@ -187,7 +187,7 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     Attenuations _e108 = attenuations(_e103.fresnel, exp((_e72 * _e103.segment_length)));
     Attenuations _e112 = attenuations(_e103.fresnel, exp((_e77 * _e103.segment_length)));
     Attenuations _e116 = attenuations(_e103.fresnel, exp((_e82 * _e103.segment_length)));
-    return vec3(((_e53 + (_e60 * _e75.tt)) + (_e101 * _e108.trt)), ((_e53 + (_e60 * _e80.tt)) + (_e101 * _e112.trt)), ((_e53 + (_e60 * _e85.tt)) + (_e101 * _e116.trt)));
+    return ((vec3(_e53) + (_e60 * vec3(_e75.tt, _e80.tt, _e85.tt))) + (_e101 * vec3(_e108.trt, _e112.trt, _e116.trt)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
@@ -200,13 +200,13 @@ FibreFrame fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
+    return FibreFrame((tangent_in * _e13), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
 FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
     FibreFrame _e12 = fibre_frame(tangent);
-    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
+    return FibreLocalDirections((((wi.x * vec3(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wi.y * vec3(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wi.z * vec3(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))), (((wo.x * vec3(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wo.y * vec3(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wo.z * vec3(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions

@@ -119,10 +119,10 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     float cos_phi = min(max((_e43 ? (((wi.y * wo.y) + (wi.z * wo.z)) / sqrt((_e43 ? _e42 : 1.0))) : 1.0), -1.0), 1.0);
     vec4 _e50[2] = lut1_nguyen_n(cos_phi, cos_theta_d);
     float factor = (cos_theta_i / max((cos_theta_d * cos_theta_d), uniforms.min_cos2_theta_d));
-    float _e69 = (_e27.y * factor);
-    float _e70 = (_e27.z * factor);
-    float _e71 = ((_e27.x * factor) * _e50[0].w);
-    return vec3(((_e71 + (_e69 * _e50[0].x)) + (_e70 * _e50[1].x)), ((_e71 + (_e69 * _e50[0].y)) + (_e70 * _e50[1].y)), ((_e71 + (_e69 * _e50[0].z)) + (_e70 * _e50[1].z)));
+    float _e64 = (_e27.y * factor);
+    float _e65 = (_e27.z * factor);
+    float _e66 = ((_e27.x * factor) * _e50[0].w);
+    return ((vec3(_e66) + (_e64 * _e50[0].xyz)) + (_e65 * _e50[1].xyz));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
@@ -135,13 +135,13 @@ FibreFrame fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
+    return FibreFrame((tangent_in * _e13), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
 FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
     FibreFrame _e12 = fibre_frame(tangent);
-    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
+    return FibreLocalDirections((((wi.x * vec3(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wi.y * vec3(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wi.z * vec3(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))), (((wo.x * vec3(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wo.y * vec3(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wo.z * vec3(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions

@@ -60,7 +60,7 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     float _e99 = min(max((_e96 + 1.0), 0.0), 1.0);
     float _e105 = (1.0 - (_e96 * _e96));
     float _e119 = (uniforms.noise_mask * (((_e99 * _e99) * (3.0 - (2.0 * _e99))) * ((0.0 < _e105) ? exp((uniforms.half_exponent_secondary * log(max(_e105, TINY)))) : 0.0)));
-    return vec3((((uniforms.kd.x * diffuse) + (uniforms.ks_primary.x * _e91)) + (uniforms.ks_secondary.x * _e119)), (((uniforms.kd.y * diffuse) + (uniforms.ks_primary.y * _e91)) + (uniforms.ks_secondary.y * _e119)), (((uniforms.kd.z * diffuse) + (uniforms.ks_primary.z * _e91)) + (uniforms.ks_secondary.z * _e119)));
+    return (((uniforms.kd * diffuse) + (uniforms.ks_primary * _e91)) + (uniforms.ks_secondary * _e119));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
@@ -73,13 +73,13 @@ FibreFrame fibre_frame(vec3 tangent_in) {
     float _e20 = ((_e16 < 0.0) ? _e19 : 1.0);
     float _e22 = (_e19 / (_e20 + _e16));
     float _e24 = ((_e14 * _e15) * _e22);
-    return FibreFrame(vec3(_e14, _e15, _e16), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
+    return FibreFrame((tangent_in * _e13), vec3((1.0 + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
 FibreLocalDirections fibre_local_directions(vec3 tangent, vec3 wi, vec3 wo) {
     FibreFrame _e12 = fibre_frame(tangent);
-    return FibreLocalDirections(vec3((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
+    return FibreLocalDirections((((wi.x * vec3(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wi.y * vec3(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wi.z * vec3(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))), (((wo.x * vec3(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wo.y * vec3(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wo.z * vec3(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions

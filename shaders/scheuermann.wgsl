@@ -53,7 +53,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e99 = min(max((_e96 + 1f), 0f), 1f);
     let _e105 = (1f - (_e96 * _e96));
     let _e119 = (uniforms.noise_mask * (((_e99 * _e99) * (3f - (2f * _e99))) * select(0f, exp((uniforms.half_exponent_secondary * log(max(_e105, TINY)))), (0f < _e105))));
-    return vec3<f32>((((uniforms.kd.x * diffuse) + (uniforms.ks_primary.x * _e91)) + (uniforms.ks_secondary.x * _e119)), (((uniforms.kd.y * diffuse) + (uniforms.ks_primary.y * _e91)) + (uniforms.ks_secondary.y * _e119)), (((uniforms.kd.z * diffuse) + (uniforms.ks_primary.z * _e91)) + (uniforms.ks_secondary.z * _e119)));
+    return (((uniforms.kd * diffuse) + (uniforms.ks_primary * _e91)) + (uniforms.ks_secondary * _e119));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
@@ -66,13 +66,13 @@ fn fibre_frame(tangent_in: vec3<f32>) -> FibreFrame {
     let _e20 = select(1f, _e19, (_e16 < 0f));
     let _e22 = (_e19 / (_e20 + _e16));
     let _e24 = ((_e14 * _e15) * _e22);
-    return FibreFrame(vec3<f32>(_e14, _e15, _e16), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
+    return FibreFrame((tangent_in * _e13), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
 fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> FibreLocalDirections {
     let _e12 = fibre_frame(tangent);
-    return FibreLocalDirections(vec3<f32>((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3<f32>((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
+    return FibreLocalDirections((((wi.x * vec3<f32>(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wi.y * vec3<f32>(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wi.z * vec3<f32>(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))), (((wo.x * vec3<f32>(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wo.y * vec3<f32>(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wo.z * vec3<f32>(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions

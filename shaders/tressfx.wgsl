@@ -38,7 +38,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let cos_secondary = ((_e46 * uniforms.cos_shift_secondary) - (_e49 * uniforms.sin_shift_secondary));
     let _e65 = select(0f, exp((uniforms.exponent_primary * log(max(cos_primary, TINY)))), (0f < cos_primary));
     let _e74 = select(0f, exp((uniforms.exponent_secondary * log(max(cos_secondary, TINY)))), (0f < cos_secondary));
-    return vec3<f32>((((uniforms.kd.x * cos_theta_i) + (uniforms.ks_primary.x * _e65)) + (uniforms.ks_secondary.x * _e74)), (((uniforms.kd.y * cos_theta_i) + (uniforms.ks_primary.y * _e65)) + (uniforms.ks_secondary.y * _e74)), (((uniforms.kd.z * cos_theta_i) + (uniforms.ks_primary.z * _e65)) + (uniforms.ks_secondary.z * _e74)));
+    return (((uniforms.kd * cos_theta_i) + (uniforms.ks_primary * _e65)) + (uniforms.ks_secondary * _e74));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3
@@ -51,13 +51,13 @@ fn fibre_frame(tangent_in: vec3<f32>) -> FibreFrame {
     let _e20 = select(1f, _e19, (_e16 < 0f));
     let _e22 = (_e19 / (_e20 + _e16));
     let _e24 = ((_e14 * _e15) * _e22);
-    return FibreFrame(vec3<f32>(_e14, _e15, _e16), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
+    return FibreFrame((tangent_in * _e13), vec3<f32>((1f + (((_e20 * _e14) * _e14) * _e22)), (_e20 * _e24), (-(_e20) * _e14)), vec3<f32>(_e24, (_e20 + ((_e15 * _e15) * _e22)), -(_e15)));
 }
 
 // fibre_local_directions: hairmath::geometry::local_directions -- wi and wo in the fibre's frame
 fn fibre_local_directions(tangent: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> FibreLocalDirections {
     let _e12 = fibre_frame(tangent);
-    return FibreLocalDirections(vec3<f32>((((wi.x * _e12.tangent.x) + (wi.y * _e12.tangent.y)) + (wi.z * _e12.tangent.z)), (((wi.x * _e12.normal.x) + (wi.y * _e12.normal.y)) + (wi.z * _e12.normal.z)), (((wi.x * _e12.binormal.x) + (wi.y * _e12.binormal.y)) + (wi.z * _e12.binormal.z))), vec3<f32>((((wo.x * _e12.tangent.x) + (wo.y * _e12.tangent.y)) + (wo.z * _e12.tangent.z)), (((wo.x * _e12.normal.x) + (wo.y * _e12.normal.y)) + (wo.z * _e12.normal.z)), (((wo.x * _e12.binormal.x) + (wo.y * _e12.binormal.y)) + (wo.z * _e12.binormal.z))));
+    return FibreLocalDirections((((wi.x * vec3<f32>(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wi.y * vec3<f32>(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wi.z * vec3<f32>(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))), (((wo.x * vec3<f32>(_e12.tangent.x, _e12.normal.x, _e12.binormal.x)) + (wo.y * vec3<f32>(_e12.tangent.y, _e12.normal.y, _e12.binormal.y))) + (wo.z * vec3<f32>(_e12.tangent.z, _e12.normal.z, _e12.binormal.z))));
 }
 
 // hair_bcsdf_world: hair_bcsdf of world-space directions, made local to the fibre by fibre_local_directions

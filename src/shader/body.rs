@@ -1,10 +1,11 @@
 //! Lowering the bodies of a traced graph to naga functions: the graph's functions (callees
 //! first), their calls and loops, and the top-level function.
 
-use super::builder::FnBuilder;
+use super::builder::{Component, FnBuilder};
 use super::captures::{self, capture_shapes};
 use super::tables::{self, TableHelper};
 use super::types;
+use super::vectorize;
 use super::{constant_values, ShaderError, TextureBinding};
 use crate::lut::Table;
 use crate::lut::MAX_AXES;
@@ -860,7 +861,7 @@ impl<'a> Lowering<'a> {
             ResultKind::Scalar => outputs[0],
             ResultKind::Vec3 => {
                 let ty = types::vec3(&mut self.shared.module);
-                compose(b, ty, outputs, &HashMap::new())
+                compose(b, ty, outputs)
             }
             ResultKind::Array(_) => {
                 let ty = result.ty(&mut self.shared.module);
@@ -872,7 +873,7 @@ impl<'a> Lowering<'a> {
             ResultKind::Struct { ty, fields } => {
                 let vec3t = types::vec3(&mut self.shared.module);
                 let shapes = fields.iter().map(|&(_, shape)| shape);
-                let (components, _) = shaped_values(b, vec3t, shapes, outputs, &HashMap::new());
+                let (components, _) = shaped_values(b, vec3t, shapes, outputs);
                 b.expr(Expression::Compose { ty, components })
             }
         }
@@ -889,7 +890,6 @@ impl<'a> Lowering<'a> {
     ) -> Result<Vec<Handle<Expression>>, ShaderError> {
         let mut ctx = BodyContext {
             values: vec![None; body.nodes.len()],
-            origin: HashMap::new(),
             paths: HashMap::new(),
             fetches: HashMap::new(),
             sites: HashMap::new(),
@@ -1031,17 +1031,21 @@ impl<'a> Lowering<'a> {
         let texture = channel / super::TEXTURE_CHANNELS as u32;
         let component = channel % super::TEXTURE_CHANNELS as u32;
         let texel = if helper.textures > 1 {
-            b.expr(Expression::AccessIndex {
-                base: result,
-                index: texture,
-            })
+            ctx.path(b, result, &[texture], false)
         } else {
             result
         };
-        Ok(b.expr(Expression::AccessIndex {
-            base: texel,
-            index: component,
-        }))
+        let value = ctx.path(b, texel, &[component], false);
+        let size = super::TEXTURE_CHANNELS as u32;
+        b.mark_component(
+            value,
+            Component {
+                vector: texel,
+                index: component,
+                size,
+            },
+        );
+        Ok(value)
     }
 
     /// Output `output` of call site `site` (the call or loop lowered at its first use).
@@ -1125,9 +1129,9 @@ impl<'a> Lowering<'a> {
             FunctionKind::LoopBody(_) => &[],
         };
         let shapes = explicit.iter().map(|&(_, shape)| shape);
-        let (mut args, rest) = shaped_values(b, vec3t, shapes, &values, &ctx.origin);
+        let (mut args, rest) = shaped_values(b, vec3t, shapes, &values);
         let captures = capture_shapes(&self.capture_vectors[call.function as usize]);
-        let (captured, _) = shaped_values(b, vec3t, captures, rest, &ctx.origin);
+        let (captured, _) = shaped_values(b, vec3t, captures, rest);
         args.extend(captured);
         let result = b.call(lowered.handle, args);
         Ok(SiteValue::Call {
@@ -1173,7 +1177,7 @@ impl<'a> Lowering<'a> {
             .map(|&a| ctx.values[a as usize].expect("arguments come before the loop"))
             .collect();
         let state_shapes = info.state.iter().map(|&(_, shape)| shape);
-        let (initial, _) = shaped_values(b, vec3t, state_shapes, &initial, &ctx.origin);
+        let (initial, _) = shaped_values(b, vec3t, state_shapes, &initial);
         let mut state = Vec::with_capacity(info.state.len());
         for (&(name, shape), init) in info.state.iter().zip(initial) {
             let ty = match shape {
@@ -1191,7 +1195,7 @@ impl<'a> Lowering<'a> {
             .map(|&a| ctx.values[a as usize].expect("captures come before the loop"))
             .collect();
         let shapes = capture_shapes(&self.capture_vectors[call.function as usize]);
-        let (captures, _) = shaped_values(b, vec3t, shapes, &captures, &ctx.origin);
+        let (captures, _) = shaped_values(b, vec3t, shapes, &captures);
 
         b.open_block();
         let index = b.load(k);
@@ -1277,8 +1281,6 @@ enum SiteValue {
 /// What the lowering of one body remembers.
 struct BodyContext {
     values: Vec<Option<Handle<Expression>>>,
-    /// Expressions that are component `i` of a `vec3` expression: (vector, i).
-    origin: HashMap<Handle<Expression>, (Handle<Expression>, u32)>,
     /// `base.path` expressions already built.
     paths: HashMap<(Handle<Expression>, Vec<u32>), Handle<Expression>>,
     fetches: HashMap<(u32, [u32; MAX_AXES]), Handle<Expression>>,
@@ -1329,7 +1331,15 @@ impl BodyContext {
                     });
                     self.paths.insert(key, e);
                     if vector && depth == path.len() {
-                        self.origin.insert(e, (parent, path[depth - 1]));
+                        let (index, size) = (path[depth - 1], 3);
+                        b.mark_component(
+                            e,
+                            Component {
+                                vector: parent,
+                                index,
+                                size,
+                            },
+                        );
                     }
                     e
                 }
@@ -1339,24 +1349,14 @@ impl BodyContext {
     }
 }
 
-/// `vec3<f32>(a, b, c)`, or the vector itself when the three are its x, y, z.
+/// The `vec3<f32>` of three scalars, as one vector expression where they are computed alike
+/// ([`vectorize::vec3`]).
 fn compose(
     b: &mut FnBuilder,
     ty: Handle<Type>,
     scalars: &[Handle<Expression>],
-    origin: &HashMap<Handle<Expression>, (Handle<Expression>, u32)>,
 ) -> Handle<Expression> {
-    let parts: Vec<Option<&(Handle<Expression>, u32)>> =
-        scalars.iter().map(|s| origin.get(s)).collect();
-    if let [Some(&(v0, 0)), Some(&(v1, 1)), Some(&(v2, 2))] = parts[..] {
-        if v0 == v1 && v1 == v2 {
-            return v0;
-        }
-    }
-    b.expr(Expression::Compose {
-        ty,
-        components: scalars.to_vec(),
-    })
+    vectorize::vec3(b, ty, [scalars[0], scalars[1], scalars[2]])
 }
 
 fn unary(b: &mut FnBuilder, op: Unary, a: Handle<Expression>) -> Handle<Expression> {
@@ -1539,7 +1539,6 @@ fn shaped_values<'s>(
     vec3t: Handle<Type>,
     shapes: impl IntoIterator<Item = Shape>,
     scalars: &'s [Handle<Expression>],
-    origin: &HashMap<Handle<Expression>, (Handle<Expression>, u32)>,
 ) -> (Vec<Handle<Expression>>, &'s [Handle<Expression>]) {
     let mut rest = scalars;
     let values = shapes
@@ -1549,7 +1548,7 @@ fn shaped_values<'s>(
             rest = tail;
             match shape {
                 Shape::Scalar => value[0],
-                Shape::Vec3 => compose(b, vec3t, value, origin),
+                Shape::Vec3 => compose(b, vec3t, value),
             }
         })
         .collect();

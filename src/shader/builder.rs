@@ -21,6 +21,16 @@ pub(super) struct FnBuilder {
     literals: HashMap<LiteralKey, Handle<Expression>>,
     /// `Expression::FunctionArgument(k)` per argument.
     arguments: Vec<Handle<Expression>>,
+    /// Expressions that are a component of a vector expression: (vector, index, its size).
+    components: HashMap<Handle<Expression>, Component>,
+}
+
+/// Component `index` of the vector expression `vector` of `size` components.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Component {
+    pub vector: Handle<Expression>,
+    pub index: u32,
+    pub size: u32,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
@@ -42,7 +52,24 @@ impl FnBuilder {
             blocks: vec![Block::new()],
             literals: HashMap::new(),
             arguments: Vec::new(),
+            components: HashMap::new(),
         }
+    }
+
+    /// Expression `h`.
+    pub fn expression(&self, h: Handle<Expression>) -> &Expression {
+        &self.function.expressions[h]
+    }
+
+    /// Records that `e` is a component of a vector expression.
+    pub fn mark_component(&mut self, e: Handle<Expression>, component: Component) {
+        self.components.insert(e, component);
+    }
+
+    /// The vector expression and the component `e` is, if it is one
+    /// ([`FnBuilder::mark_component`]).
+    pub fn component(&self, e: Handle<Expression>) -> Option<Component> {
+        self.components.get(&e).copied()
     }
 
     /// Adds an argument `name: ty`; returns its value.

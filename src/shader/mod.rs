@@ -54,6 +54,7 @@ mod model;
 mod names;
 mod tables;
 mod types;
+mod vectorize;
 mod write;
 
 pub use crate::real::TEXTURE_CHANNELS;

@@ -268,23 +268,24 @@ impl<'m> Interpreter<'m> {
                 Value::List(components.iter().map(|&c| get(c)).collect())
             }
             Expression::Splat { size, value } => Value::List(vec![get(*value); *size as usize]),
-            Expression::Unary { op, expr } => match (op, get(*expr)) {
-                (UnaryOperator::Negate, Value::F32(a)) => Value::F32(-a),
-                (UnaryOperator::LogicalNot, Value::Bool(a)) => Value::Bool(!a),
-                (op, v) => panic!("{op:?} of {v:?}"),
-            },
+            Expression::Swizzle {
+                size,
+                vector,
+                pattern,
+            } => {
+                let v = get(*vector);
+                let picked = pattern[..*size as usize]
+                    .iter()
+                    .map(|&c| element(v.clone(), c as usize));
+                Value::List(picked.collect())
+            }
+            Expression::Unary { op, expr } => unary(*op, get(*expr)),
             Expression::Binary { op, left, right } => binary(*op, get(*left), get(*right)),
             Expression::Select {
                 condition,
                 accept,
                 reject,
-            } => {
-                if get(*condition).bool() {
-                    get(*accept)
-                } else {
-                    get(*reject)
-                }
-            }
+            } => select(get(*condition), get(*accept), get(*reject)),
             Expression::Math {
                 fun,
                 arg,
@@ -418,8 +419,55 @@ fn binary(op: BinaryOperator, a: Value, b: Value) -> Value {
     }
 }
 
+/// `op` of a scalar, or of each component of a vector.
+fn unary(op: UnaryOperator, v: Value) -> Value {
+    match (op, v) {
+        (_, Value::List(items)) => Value::List(items.into_iter().map(|x| unary(op, x)).collect()),
+        (UnaryOperator::Negate, Value::F32(a)) => Value::F32(-a),
+        (UnaryOperator::LogicalNot, Value::Bool(a)) => Value::Bool(!a),
+        (op, v) => panic!("{op:?} of {v:?}"),
+    }
+}
+
+/// WGSL's `select(reject, accept, condition)`: the whole value for a `bool` condition, each
+/// component for a vector of them.
+fn select(condition: Value, accept: Value, reject: Value) -> Value {
+    match (condition, accept, reject) {
+        (Value::Bool(c), a, r) => {
+            if c {
+                a
+            } else {
+                r
+            }
+        }
+        (Value::List(c), Value::List(a), Value::List(r)) => {
+            assert!(
+                c.len() == a.len() && a.len() == r.len(),
+                "select of unequal sizes"
+            );
+            let parts = c.into_iter().zip(a).zip(r);
+            Value::List(parts.map(|((c, a), r)| select(c, a, r)).collect())
+        }
+        (c, a, r) => panic!("select({r:?}, {a:?}, {c:?})"),
+    }
+}
+
+/// `fun` of scalars, or of each component of vectors (every vector argument of one size).
 fn math(fun: MathFunction, a: Value, b: Option<Value>, c: Option<Value>) -> Value {
     use MathFunction as M;
+    if let Value::List(items) = a {
+        let component = |v: &Option<Value>, k: usize| match v {
+            Some(Value::List(items)) => Some(items[k].clone()),
+            Some(other) => panic!("math {fun:?} of a vector and {other:?}"),
+            None => None,
+        };
+        let parts = items.into_iter().enumerate();
+        return Value::List(
+            parts
+                .map(|(k, x)| math(fun, x, component(&b, k), component(&c, k)))
+                .collect(),
+        );
+    }
     if let (M::Clamp, Value::I32(x)) = (fun, &a) {
         let (Some(Value::I32(lo)), Some(Value::I32(hi))) = (b, c) else {
             panic!("clamp of i32")

@@ -11,6 +11,7 @@
 
 mod interpret;
 mod names;
+mod vectors;
 
 use hairmath::bcsdf::{
     trace_eval, trace_eval_with, traced_inputs, ChiangFarField, FarFieldRule, FromInputs, Model,
