@@ -165,11 +165,11 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     float v_dot_l = (((wi.x * wo.x) + (wi.y * wo.y)) + (wi.z * wo.z));
     float _e42 = gaussian_lobe(uniforms.width_r, (sum_of_sines - uniforms.shift_r));
     float _e51 = fresnel_schlick(sqrt(min(max((0.5 + (0.5 * v_dot_l)), 0.0), 1.0)), uniforms.eta);
-    float _e53 = (_e42 * ((0.25 * cos_half_phi) * _e51));
+    float r_lobe = (_e42 * ((0.25 * cos_half_phi) * _e51));
     float _e55 = gaussian_lobe(uniforms.width_tt, (sum_of_sines - uniforms.shift_tt));
     vec4 _e56 = lut0_frostbite_tt(abs_theta_o, uniforms.beta_n);
     float _e59 = tt_gaussian(_e23.phi, _e56.x, _e56.y);
-    float _e60 = (_e55 * _e59);
+    float tt_lobe = (_e55 * _e59);
     float inv_eta = (1.0 / uniforms.eta);
     float _e62 = (_e23.sin_theta_o * inv_eta);
     float cos_theta_t = sqrt(max((1.0 - (_e62 * _e62)), 0.0));
@@ -182,12 +182,12 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     float _e82 = -(uniforms.sigma_a.z);
     Attenuations _e85 = attenuations(_e69.fresnel, exp((_e82 * _e69.segment_length)));
     float _e91 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - uniforms.shift_trt));
-    float _e101 = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
+    float trt_lobe = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
     FibrePath _e103 = fibre_path(REFIT_TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, uniforms.eta);
     Attenuations _e108 = attenuations(_e103.fresnel, exp((_e72 * _e103.segment_length)));
     Attenuations _e112 = attenuations(_e103.fresnel, exp((_e77 * _e103.segment_length)));
     Attenuations _e116 = attenuations(_e103.fresnel, exp((_e82 * _e103.segment_length)));
-    return ((vec3(_e53) + (_e60 * vec3(_e75.tt, _e80.tt, _e85.tt))) + (_e101 * vec3(_e108.trt, _e112.trt, _e116.trt)));
+    return ((vec3(r_lobe) + (tt_lobe * vec3(_e75.tt, _e80.tt, _e85.tt))) + (trt_lobe * vec3(_e108.trt, _e112.trt, _e116.trt)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

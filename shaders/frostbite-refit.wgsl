@@ -162,11 +162,11 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let v_dot_l = (((wi.x * wo.x) + (wi.y * wo.y)) + (wi.z * wo.z));
     let _e42 = gaussian_lobe(uniforms.width_r, (sum_of_sines - uniforms.shift_r));
     let _e51 = fresnel_schlick(sqrt(min(max((0.5f + (0.5f * v_dot_l)), 0f), 1f)), uniforms.eta);
-    let _e53 = (_e42 * ((0.25f * cos_half_phi) * _e51));
+    let r_lobe = (_e42 * ((0.25f * cos_half_phi) * _e51));
     let _e55 = gaussian_lobe(uniforms.width_tt, (sum_of_sines - uniforms.shift_tt));
     let _e56 = lut0_frostbite_tt(abs_theta_o, uniforms.beta_n);
     let _e59 = tt_gaussian(_e23.phi, _e56.x, _e56.y);
-    let _e60 = (_e55 * _e59);
+    let tt_lobe = (_e55 * _e59);
     let inv_eta = (1f / uniforms.eta);
     let _e62 = (_e23.sin_theta_o * inv_eta);
     let cos_theta_t = sqrt(max((1f - (_e62 * _e62)), 0f));
@@ -179,12 +179,12 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e82 = -(uniforms.sigma_a.z);
     let _e85 = attenuations(_e69.fresnel, exp((_e82 * _e69.segment_length)));
     let _e91 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - uniforms.shift_trt));
-    let _e101 = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
+    let trt_lobe = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
     let _e103 = fibre_path(REFIT_TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, uniforms.eta);
     let _e108 = attenuations(_e103.fresnel, exp((_e72 * _e103.segment_length)));
     let _e112 = attenuations(_e103.fresnel, exp((_e77 * _e103.segment_length)));
     let _e116 = attenuations(_e103.fresnel, exp((_e82 * _e103.segment_length)));
-    return ((vec3(_e53) + (_e60 * vec3<f32>(_e75.tt, _e80.tt, _e85.tt))) + (_e101 * vec3<f32>(_e108.trt, _e112.trt, _e116.trt)));
+    return ((vec3(r_lobe) + (tt_lobe * vec3<f32>(_e75.tt, _e80.tt, _e85.tt))) + (trt_lobe * vec3<f32>(_e108.trt, _e112.trt, _e116.trt)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

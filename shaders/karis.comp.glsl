@@ -97,24 +97,24 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     float v_dot_l = (((wo.x * wi.x) + (wo.y * wi.y)) + (wo.z * wi.z));
     float _e96 = gaussian_lobe(max((uniforms.width_r * (SQRT_TWO * cos_half_phi)), TINY), (sum_of_sines - ((2.0 * R_TILT_SIN_COS[0]) * (((R_TILT_SIN_COS[1] * cos_half_phi) * sqrt(max((1.0 - (sin_v * sin_v)), 0.0))) + (R_TILT_SIN_COS[0] * sin_v)))));
     float _e105 = fresnel_schlick(sqrt(min(max((0.5 + (0.5 * v_dot_l)), 0.0), 1.0)), ETA);
-    float _e108 = max((_e96 * ((0.25 * cos_half_phi) * _e105)), 0.0);
+    float r_lobe = max((_e96 * ((0.25 * cos_half_phi) * _e105)), 0.0);
     float _e111 = gaussian_lobe(uniforms.width_tt, (sum_of_sines - SHIFT));
     float _e116 = scaled_eta_prime_karis(cos_theta_d, KARIS_ETA_PRIME[0], KARIS_ETA_PRIME[1]);
-    float _e117 = (cos_theta_d / _e116);
-    float _e122 = h_tt_karis(_e117, cos_phi, cos_half_phi, KARIS_H_TT[0], KARIS_H_TT[1]);
+    float inv_eta_prime = (cos_theta_d / _e116);
+    float _e122 = h_tt_karis(inv_eta_prime, cos_phi, cos_half_phi, KARIS_H_TT[0], KARIS_H_TT[1]);
     float _e129 = fresnel_schlick((cos_theta_d * sqrt(min(max((1.0 - (_e122 * _e122)), 0.0), 1.0))), ETA);
     float _e130 = (1.0 - _e129);
     float _e136 = d_karis(cos_phi, KARIS_D_TT[0], KARIS_D_TT[1]);
-    float _e138 = ((_e111 * _e136) * (_e130 * _e130));
-    float _e139 = (_e122 * _e117);
-    float _e144 = (2.0 * abs((1.0 - ((_e139 * _e139) / cos_theta_d))));
+    float tt_lobe = ((_e111 * _e136) * (_e130 * _e130));
+    float _e139 = (_e122 * inv_eta_prime);
+    float tt_path = (2.0 * abs((1.0 - ((_e139 * _e139) / cos_theta_d))));
     float _e162 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - TRT_SHIFT));
     float _e164 = fresnel_schlick((cos_theta_d * 0.5), ETA);
     float _e165 = (1.0 - _e164);
     float _e172 = d_karis(cos_phi, KARIS_D_TRT[0], KARIS_D_TRT[1]);
-    float _e174 = ((_e162 * _e172) * ((_e165 * _e165) * _e164));
-    float _e176 = (TRT_COLOR_EXPONENT / cos_theta_d);
-    return max(((vec3(_e108) + max((_e138 * exp((-(uniforms.sigma_a) * _e144))), vec3(0.0))) + max((_e174 * exp((uniforms.log_color * _e176))), vec3(0.0))), vec3(0.0));
+    float trt_lobe = ((_e162 * _e172) * ((_e165 * _e165) * _e164));
+    float trt_exponent = (TRT_COLOR_EXPONENT / cos_theta_d);
+    return max(((vec3(r_lobe) + max((tt_lobe * exp((-(uniforms.sigma_a) * tt_path))), vec3(0.0))) + max((trt_lobe * exp((uniforms.log_color * trt_exponent))), vec3(0.0))), vec3(0.0));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

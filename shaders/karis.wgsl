@@ -90,24 +90,24 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let v_dot_l = (((wo.x * wi.x) + (wo.y * wi.y)) + (wo.z * wi.z));
     let _e96 = gaussian_lobe(max((uniforms.width_r * (SQRT_TWO * cos_half_phi)), TINY), (sum_of_sines - ((2f * R_TILT_SIN_COS[0]) * (((R_TILT_SIN_COS[1] * cos_half_phi) * sqrt(max((1f - (sin_v * sin_v)), 0f))) + (R_TILT_SIN_COS[0] * sin_v)))));
     let _e105 = fresnel_schlick(sqrt(min(max((0.5f + (0.5f * v_dot_l)), 0f), 1f)), ETA);
-    let _e108 = max((_e96 * ((0.25f * cos_half_phi) * _e105)), 0f);
+    let r_lobe = max((_e96 * ((0.25f * cos_half_phi) * _e105)), 0f);
     let _e111 = gaussian_lobe(uniforms.width_tt, (sum_of_sines - SHIFT));
     let _e116 = scaled_eta_prime_karis(cos_theta_d, KARIS_ETA_PRIME[0], KARIS_ETA_PRIME[1]);
-    let _e117 = (cos_theta_d / _e116);
-    let _e122 = h_tt_karis(_e117, cos_phi, cos_half_phi, KARIS_H_TT[0], KARIS_H_TT[1]);
+    let inv_eta_prime = (cos_theta_d / _e116);
+    let _e122 = h_tt_karis(inv_eta_prime, cos_phi, cos_half_phi, KARIS_H_TT[0], KARIS_H_TT[1]);
     let _e129 = fresnel_schlick((cos_theta_d * sqrt(min(max((1f - (_e122 * _e122)), 0f), 1f))), ETA);
     let _e130 = (1f - _e129);
     let _e136 = d_karis(cos_phi, KARIS_D_TT[0], KARIS_D_TT[1]);
-    let _e138 = ((_e111 * _e136) * (_e130 * _e130));
-    let _e139 = (_e122 * _e117);
-    let _e144 = (2f * abs((1f - ((_e139 * _e139) / cos_theta_d))));
+    let tt_lobe = ((_e111 * _e136) * (_e130 * _e130));
+    let _e139 = (_e122 * inv_eta_prime);
+    let tt_path = (2f * abs((1f - ((_e139 * _e139) / cos_theta_d))));
     let _e162 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - TRT_SHIFT));
     let _e164 = fresnel_schlick((cos_theta_d * 0.5f), ETA);
     let _e165 = (1f - _e164);
     let _e172 = d_karis(cos_phi, KARIS_D_TRT[0], KARIS_D_TRT[1]);
-    let _e174 = ((_e162 * _e172) * ((_e165 * _e165) * _e164));
-    let _e176 = (TRT_COLOR_EXPONENT / cos_theta_d);
-    return max(((vec3(_e108) + max((_e138 * exp((-(uniforms.sigma_a) * _e144))), vec3(0f))) + max((_e174 * exp((uniforms.log_color * _e176))), vec3(0f))), vec3(0f));
+    let trt_lobe = ((_e162 * _e172) * ((_e165 * _e165) * _e164));
+    let trt_exponent = (TRT_COLOR_EXPONENT / cos_theta_d);
+    return max(((vec3(r_lobe) + max((tt_lobe * exp((-(uniforms.sigma_a) * tt_path))), vec3(0f))) + max((trt_lobe * exp((uniforms.log_color * trt_exponent))), vec3(0f))), vec3(0f));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -431,7 +431,7 @@ impl<R: Real, V: FrostbiteVariant> FrostbiteHair<R, V> {
     fn r(&self, a: &FrostbiteAngles<R>) -> R {
         let u = &self.uniforms;
         let mp = gaussian_lobe(u.width_r, a.sum_of_sines - u.shift_r);
-        mp * r_azimuthal(a.cos_half_phi, a.v_dot_l, u.eta)
+        (mp * r_azimuthal(a.cos_half_phi, a.v_dot_l, u.eta)).label("r_lobe")
     }
 
     /// `A_p(h)` per channel for the ray inclined at theta_o: [`super::offset_attenuation`]'s value,
@@ -454,7 +454,7 @@ impl<R: Real, V: FrostbiteVariant> FrostbiteHair<R, V> {
         let u = &self.uniforms;
         let mp = gaussian_lobe(u.width_tt, a.sum_of_sines - u.shift_tt);
         let [height, sharpness] = self.tt_table.sample([a.abs_theta_o, u.beta_n]);
-        let lobe = mp * tt_gaussian(a.phi, height, sharpness);
+        let lobe = (mp * tt_gaussian(a.phi, height, sharpness)).label("tt_lobe");
         self.attenuation(Transmitted::Tt, V::TT_OFFSET, a)
             .map(|t| lobe * t)
     }
@@ -468,7 +468,7 @@ impl<R: Real, V: FrostbiteVariant> FrostbiteHair<R, V> {
             u.trt_scale,
             ExpCosCoefficients::named(&KARIS_D_TRT_TABLE),
         );
-        let lobe = mp * d;
+        let lobe = (mp * d).label("trt_lobe");
         self.attenuation(Transmitted::Trt, V::TRT_OFFSET, a)
             .map(|t| lobe * t)
     }

@@ -476,15 +476,17 @@ impl<R: Real, V: KarisVariant> KarisHair<R, V> {
         let one = R::c(1.0);
         let mp = gaussian_lobe(self.uniforms.width_tt, a.sum_of_sines - SHIFT.get());
         let eta_prime = EtaPrimeCoefficients::named(c.eta_prime);
-        let inv_eta_prime = inverse_eta_prime_karis(a.cos_theta_d, eta_prime);
+        let inv_eta_prime =
+            inverse_eta_prime_karis(a.cos_theta_d, eta_prime).label("inv_eta_prime");
         let h_tt = HTtCoefficients::named(c.h_tt);
-        let h = h_tt_karis_of_cos(inv_eta_prime, a.cos_phi, a.cos_half_phi, h_tt);
+        let h = h_tt_karis_of_cos(inv_eta_prime, a.cos_phi, a.cos_half_phi, h_tt).label("h_tt");
         let f = fresnel_schlick(a.cos_theta_d * saturate(one - h * h).sqrt(), ETA.get());
         let fp = (one - f).sqr();
         let np = d_karis_of_cos(a.cos_phi, ExpCosCoefficients::named(c.d_tt));
-        let lobe = mp * np * fp;
+        let lobe = (mp * np * fp).label("tt_lobe");
         // The listing's path (README errata): 2 |1 - (h a)^2 / cos theta_d|.
-        let path = R::c(2.0) * (one - (h * inv_eta_prime).sqr() / a.cos_theta_d).abs();
+        let path =
+            (R::c(2.0) * (one - (h * inv_eta_prime).sqr() / a.cos_theta_d).abs()).label("tt_path");
         self.uniforms.sigma_a.map(|s| lobe * (-s * path).exp())
     }
 
@@ -495,8 +497,8 @@ impl<R: Real, V: KarisVariant> KarisHair<R, V> {
         let f = fresnel_schlick(a.cos_theta_d * R::c(0.5), ETA.get());
         let fp = (R::c(1.0) - f).sqr() * f;
         let np = d_karis_of_cos(a.cos_phi, ExpCosCoefficients::named(c.d_trt));
-        let lobe = mp * np * fp;
-        let exponent = TRT_COLOR_EXPONENT.get::<R>() / a.cos_theta_d;
+        let lobe = (mp * np * fp).label("trt_lobe");
+        let exponent = (TRT_COLOR_EXPONENT.get::<R>() / a.cos_theta_d).label("trt_exponent");
         self.uniforms.log_color.map(|l| lobe * (l * exponent).exp())
     }
 
@@ -506,7 +508,7 @@ impl<R: Real, V: KarisVariant> KarisHair<R, V> {
         let a = UnrealAngles::of(query);
         let zero = R::c(0.0);
         KarisLobes {
-            r: self.r(&a).max(zero),
+            r: self.r(&a).max(zero).label("r_lobe"),
             tt: self.tt(&a).map(|v| v.max(zero)),
             trt: self.trt(&a).map(|v| v.max(zero)),
         }
