@@ -1031,21 +1031,12 @@ impl<'a> Lowering<'a> {
         let texture = channel / super::TEXTURE_CHANNELS as u32;
         let component = channel % super::TEXTURE_CHANNELS as u32;
         let texel = if helper.textures > 1 {
-            ctx.path(b, result, &[texture], false)
+            ctx.path(b, result, &[texture], None)
         } else {
             result
         };
-        let value = ctx.path(b, texel, &[component], false);
-        let size = super::TEXTURE_CHANNELS as u32;
-        b.mark_component(
-            value,
-            Component {
-                vector: texel,
-                index: component,
-                size,
-            },
-        );
-        Ok(value)
+        let texel_size = super::TEXTURE_CHANNELS as u32;
+        Ok(ctx.path(b, texel, &[component], Some(texel_size)))
     }
 
     /// Output `output` of call site `site` (the call or loop lowered at its first use).
@@ -1069,7 +1060,7 @@ impl<'a> Lowering<'a> {
                 let (path, vector) = kind.output_path(output).ok_or_else(|| {
                     ShaderError::Unsupported(format!("call output {output} beyond its result"))
                 })?;
-                ctx.path(b, result, &path, vector)
+                ctx.path(b, result, &path, vector.then_some(3))
             }
             SiteValue::Loop { ref state } => {
                 let shapes = state.iter().map(|&(_, shape)| shape);
@@ -1079,7 +1070,7 @@ impl<'a> Lowering<'a> {
                 let value = state[entry].0;
                 match shape {
                     Shape::Scalar => value,
-                    Shape::Vec3 => ctx.path(b, value, &[component], true),
+                    Shape::Vec3 => ctx.path(b, value, &[component], Some(3)),
                 }
             }
         })
@@ -1295,7 +1286,9 @@ impl BodyContext {
     fn read(&mut self, b: &mut FnBuilder, source: &Source) -> Handle<Expression> {
         match source {
             Source::Value(h) => *h,
-            Source::Component { base, path, vector } => self.path(b, *base, path, *vector),
+            Source::Component { base, path, vector } => {
+                self.path(b, *base, path, vector.then_some(3))
+            }
             Source::Constant {
                 constant,
                 path,
@@ -1305,18 +1298,19 @@ impl BodyContext {
                     .constants
                     .entry(*constant)
                     .or_insert_with(|| b.expr(Expression::Constant(*constant)));
-                self.path(b, base, path, *vector)
+                self.path(b, base, path, vector.then_some(3))
             }
         }
     }
 
-    /// `base.path[0]...`, each prefix built once.
+    /// `base.path[0]...`, each prefix built once; with `vector_size`, the last step is recorded
+    /// as a component of a vector of that many components ([`FnBuilder::mark_component`]).
     fn path(
         &mut self,
         b: &mut FnBuilder,
         base: Handle<Expression>,
         path: &[u32],
-        vector: bool,
+        vector_size: Option<u32>,
     ) -> Handle<Expression> {
         let mut h = base;
         for depth in 1..=path.len() {
@@ -1330,8 +1324,8 @@ impl BodyContext {
                         index: path[depth - 1],
                     });
                     self.paths.insert(key, e);
-                    if vector && depth == path.len() {
-                        let (index, size) = (path[depth - 1], 3);
+                    if let (Some(size), true) = (vector_size, depth == path.len()) {
+                        let index = path[depth - 1];
                         b.mark_component(
                             e,
                             Component {

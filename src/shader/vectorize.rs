@@ -89,7 +89,7 @@ impl Vectorizer<'_> {
             return None;
         }
         match e[0] {
-            Expression::Unary { op, .. } => self.negation(op, &e),
+            Expression::Unary { .. } => self.negation(&e),
             Expression::Math { fun, .. } => self.math(fun, &e),
             Expression::Select { .. } => self.select(&e),
             _ => None,
@@ -97,20 +97,23 @@ impl Vectorizer<'_> {
     }
 
     /// `-v` of three negations.
-    fn negation(&mut self, op: UnaryOperator, e: &[Expression; 3]) -> Option<Lanes> {
+    fn negation(&mut self, e: &[Expression; 3]) -> Option<Lanes> {
         let inner = e.clone().map(|x| match x {
-            Expression::Unary { op: o, expr } if o == op => Some(expr),
+            Expression::Unary {
+                op: UnaryOperator::Negate,
+                expr,
+            } => Some(expr),
             _ => None,
         });
         let [Some(a), Some(b), Some(c)] = inner else {
             return None;
         };
-        if op != UnaryOperator::Negate {
-            return None;
-        }
         let lanes = self.lanes([a, b, c]);
         let expr = self.vector(lanes);
-        Some(Lanes::Vector(self.b.expr(Expression::Unary { op, expr })))
+        Some(Lanes::Vector(self.b.expr(Expression::Unary {
+            op: UnaryOperator::Negate,
+            expr,
+        })))
     }
 
     /// The vector whose x, y and z the three are (or three consecutive components of a
