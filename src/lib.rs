@@ -13,6 +13,8 @@ pub mod lobe;
 pub mod lut;
 pub mod models;
 pub mod params;
+#[cfg(feature = "plan")]
+pub mod plan;
 pub mod quadrature;
 pub mod real;
 pub mod registry;

@@ -215,7 +215,7 @@ pub fn frostbite_trt_scale(beta_n: AzimuthalRoughness) -> f64 {
 }
 
 /// [`frostbite_trt_scale`] in precision `R` (Tafuri 2019, slide 21).
-fn trt_scale_of<R: Real>(beta_n: R) -> R {
+pub(crate) fn trt_scale_of<R: Real>(beta_n: R) -> R {
     (R::c(1.5) * (R::c(1.0) - beta_n)).clamp(R::c(0.0), R::c(1.0))
 }
 

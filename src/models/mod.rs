@@ -99,3 +99,10 @@ pub use frostbite_hair::{
     d_trt_frostbite, frostbite_trt_scale, frostbite_tt_table, Frostbite, FrostbiteHair,
     FrostbiteRefit, FrostbiteUniforms, FrostbiteVariant, FROSTBITE_LOBES,
 };
+
+// Models composed per lobe and per factor (what scene plans choose from).
+mod composed;
+pub use composed::{
+    Attenuation, Azimuthal, ComposedHair, ComposedLobe, ComposedUniforms, Composition,
+    CompositionError, Constants, Distribution, LobeFactors, Longitudinal, COMPOSED_LOBES,
+};

@@ -59,8 +59,9 @@ mod write;
 
 pub use crate::real::TEXTURE_CHANNELS;
 pub use model::{
-    committed_shaders, example_shaders, model_shader, shader_files, table_files, CommittedFile,
-    Language, ModelShader, ModelShaderError, BCSDF_FUNCTION, FRAME_FUNCTION, WORLD_FUNCTION,
+    committed_shaders, example_shaders, graph_shader, model_shader, shader_files, table_files,
+    CommittedFile, Language, ModelShader, ModelShaderError, BCSDF_FUNCTION, FRAME_FUNCTION,
+    WORLD_FUNCTION,
 };
 pub use write::{BOUNDS_CHECKS, GLSL_FIRST_TEXTURE_BINDING, MSL_SIZES_BUFFER};
 

@@ -130,15 +130,29 @@ pub fn model_shader(
     varying: &[&str],
 ) -> Result<ModelShader, ModelShaderError> {
     let graph = entry.trace_shader(values, varying)?;
+    let summary = format!("`hairmath eval --model {}`, {}", entry.name, entry.summary);
+    let source =
+        "hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor";
+    Ok(graph_shader(entry.name, &summary, source, graph)?)
+}
+
+/// The shader module of a traced `hair_bcsdf` `graph` with its frame and world-space
+/// companions, named `name` (the import path's last segment), whose comment says what it
+/// evaluates (`summary`) and where its Rust code is (`source`).
+///
+/// # Errors
+/// [`ShaderError`] if the emitter fails.
+pub fn graph_shader(
+    name: &'static str,
+    summary: &str,
+    source: &str,
+    graph: Graph,
+) -> Result<ModelShader, ShaderError> {
     let module = super::ModuleBuilder::new()
         .add(&graph, BCSDF_FUNCTION)?
         .comment(
             BCSDF_FUNCTION,
-            vec![
-                format!("{BCSDF_FUNCTION}: `hairmath eval --model {}`, {}", entry.name, entry.summary),
-                "(hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)"
-                    .to_string(),
-            ],
+            vec![format!("{BCSDF_FUNCTION}: {summary}"), format!("({source})")],
         )
         .add(&trace_local_directions(), FRAME_FUNCTION)?
         .comment(
@@ -150,7 +164,7 @@ pub fn model_shader(
         .world_companion(WORLD_FUNCTION, FRAME_FUNCTION, BCSDF_FUNCTION)?
         .build()?;
     Ok(ModelShader {
-        model: entry.name,
+        model: name,
         graph,
         module,
     })

@@ -8,6 +8,8 @@
 //! - `hairmath lut` bakes a lookup table and writes it as raw f32 + JSON (and PNG).
 //! - `hairmath fit` regenerates the fitted constants of the source documents and prints them
 //!   beside the published values, with errors; it can write the generated constants file.
+//! - `hairmath plan` finds the cheapest composition of per-lobe factors whose error over a
+//!   scene's hair stays within a budget, and writes its shader.
 //! - `hairmath wigner3j` and `hairmath gaunt` compute Wigner 3-j symbols and Gaunt coefficients
 //!   of rows read as CSV from stdin.
 //!
@@ -19,6 +21,7 @@ mod fit;
 mod flags;
 mod lut;
 mod models;
+mod plan;
 mod report;
 mod sh;
 mod shader;
@@ -130,6 +133,19 @@ enum Command {
     /// interpolated in shader arithmetic; --out is then required, and the tables and a JSON
     /// description of the bindings are written beside the module.
     Shader(shader::ShaderArgs),
+    /// Plan a scene: the cheapest composition of per-lobe, per-factor choices (longitudinal M,
+    /// azimuthal N, attenuation A, or the lobe dropped) whose error E against Chiang et al.
+    /// 2016's far field stays within the scene's budget over the scene's hair.
+    ///
+    /// Reads a TOML scene file (budget, cost, [hair] with each parameter fixed, a [min, max]
+    /// range or { varying = [min, max] }, [lights]; the README documents the keys). Measures
+    /// every composition at the corners of the parameters' box and at interior points (the
+    /// worst taken), prints the plan (each lobe's factors with its own error and cost, the
+    /// total error measured on the composed model as a whole, its weighted operation count),
+    /// or JSON with --json; --out DIR writes the shader hair.<ext> (--lang as for `shader`;
+    /// hair_bcsdf takes the scene's non-fixed parameters after wo, in the file's order), its
+    /// lookup tables and plan.json. A malformed scene file is reported with its line and key.
+    Plan(plan::PlanArgs),
 }
 
 /// Why a subcommand failed.
@@ -169,6 +185,8 @@ pub enum CliError {
     Comparison(hairmath::fit::ComparisonError),
     /// A shader could not be made.
     Shader(String),
+    /// A scene could not be read or planned.
+    Plan(String),
     /// Reading or writing failed.
     Io(io::Error),
 }
@@ -204,7 +222,7 @@ impl fmt::Display for CliError {
                 )
             }
             CliError::Comparison(e) => write!(f, "{e}"),
-            CliError::Shader(e) => write!(f, "{e}"),
+            CliError::Shader(e) | CliError::Plan(e) => write!(f, "{e}"),
             CliError::Io(e) => write!(f, "I/O error: {e}"),
         }
     }
@@ -273,6 +291,7 @@ fn main() -> ExitCode {
         Command::Wigner3j(args) => sh::run_wigner3j(args),
         Command::Gaunt(args) => sh::run_gaunt(args),
         Command::Shader(args) => shader::run(args),
+        Command::Plan(args) => plan::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

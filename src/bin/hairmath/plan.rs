@@ -1,0 +1,241 @@
+//! `hairmath plan`: the cheapest composition of per-lobe factors that meets a scene's error
+//! budget ([`hairmath::plan::plan`]), printed, as JSON, and with `--out DIR` its shader, tables
+//! and `plan.json`. This file only formats what the library computes.
+
+use crate::CliError;
+use clap::builder::{PossibleValue, PossibleValuesParser};
+use clap::Args;
+use hairmath::diagnostics::OpCounts;
+use hairmath::models::{Azimuthal, LobeFactors};
+use hairmath::plan::{plan, Plan, PlanSettings, PlannedLobe, Scene};
+use hairmath::shader::{graph_shader, table_files, CommittedFile, Language, ModelShader};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde_json::{json, Value};
+use std::fs;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+
+/// The `--lang` values ([`Language::ALL`]).
+fn languages() -> Vec<PossibleValue> {
+    Language::ALL
+        .iter()
+        .map(|(_, name, help)| PossibleValue::new(*name).help(*help))
+        .collect()
+}
+
+/// Arguments of `hairmath plan`.
+#[derive(Args, Debug)]
+pub struct PlanArgs {
+    /// The scene file (TOML; the README's "Scene plans" documents its keys).
+    scene: PathBuf,
+    /// Print the plan as one JSON object (keys choices, error, cost, shader, ...).
+    #[arg(long)]
+    json: bool,
+    /// Write the plan's shader (`hair.<ext>`), its lookup tables and `plan.json` to DIR.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// The language of the shader written with --out, as for `hairmath shader`.
+    #[arg(long, default_value = "wgsl", value_parser = PossibleValuesParser::new(languages()))]
+    lang: String,
+}
+
+/// The file extension of a shader in `language`.
+fn extension(language: Language) -> &'static str {
+    match language {
+        Language::Wgsl | Language::WgslCompute | Language::WgslNagaOil => "wgsl",
+        Language::Glsl => "glsl",
+        Language::Hlsl => "hlsl",
+        Language::Msl => "metal",
+        Language::Spirv => "spv",
+    }
+}
+
+/// Runs `hairmath plan`.
+pub fn run(args: &PlanArgs) -> Result<(), CliError> {
+    let scene = Scene::read(&args.scene).map_err(|e| CliError::Plan(e.to_string()))?;
+    let bar = ProgressBar::new(0);
+    bar.set_style(
+        ProgressStyle::with_template("measuring {msg} [{bar:40}] {pos}/{len} hairs, {elapsed}")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message("compositions");
+    let result = plan(&scene, &PlanSettings::default(), &|done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
+    let plan = result.map_err(|e| CliError::Plan(e.to_string()))?;
+    let language = Language::from_name(&args.lang).expect("clap checks the name");
+    let shader = graph_shader(
+        "plan",
+        &format!(
+            "the scene plan of {}: {}",
+            args.scene.display(),
+            plan.composition.describe()
+        ),
+        "hairmath::models::ComposedHair, chosen by hairmath::plan::plan",
+        plan.graph.clone(),
+    )?;
+    let file = format!("hair.{}", extension(language));
+    let data = plan_json(&scene, &plan, &file, &args.lang);
+    if let Some(dir) = &args.out {
+        write_outputs(dir, &shader, language, &file, &data)?;
+    }
+    let mut stdout = io::stdout().lock();
+    match args.json {
+        true => writeln!(
+            stdout,
+            "{}",
+            serde_json::to_string_pretty(&data).expect("JSON")
+        )?,
+        false => write!(stdout, "{}", plan_text(&scene, &plan))?,
+    }
+    Ok(stdout.flush()?)
+}
+
+/// Writes the shader, its tables and bindings, and `plan.json` into `dir`.
+fn write_outputs(
+    dir: &Path,
+    shader: &ModelShader,
+    language: Language,
+    file: &str,
+    data: &Value,
+) -> Result<(), CliError> {
+    fs::create_dir_all(dir)?;
+    fs::write(dir.join(file), shader.write(language)?)?;
+    let (tables, mut files) = table_files("hair", shader);
+    if !shader.module.bindings().is_empty() {
+        files.push(CommittedFile {
+            name: "hair.bindings.json".to_string(),
+            contents: shader.bindings_json(&tables).into_bytes(),
+        });
+    }
+    for f in files {
+        fs::write(dir.join(&f.name), &f.contents)?;
+    }
+    let text = serde_json::to_string_pretty(data).expect("JSON") + "\n";
+    Ok(fs::write(dir.join("plan.json"), text)?)
+}
+
+/// The factors of one lobe as JSON.
+fn factors_json(factors: Option<LobeFactors>, nodes: usize) -> Value {
+    let Some(f) = factors else {
+        return Value::Null;
+    };
+    let (distribution, attenuation) = match f.azimuthal {
+        Azimuthal::Separable {
+            distribution,
+            attenuation,
+        } => (json!(distribution.name()), json!(attenuation.name())),
+        _ => (Value::Null, Value::Null),
+    };
+    json!({
+        "longitudinal": f.longitudinal.name(),
+        "azimuthal": f.azimuthal.name(),
+        "distribution": distribution,
+        "attenuation": attenuation,
+        "far_field_nodes": if f.azimuthal == Azimuthal::FarField { json!(nodes) } else { Value::Null },
+        "description": f.describe(),
+    })
+}
+
+/// A lobe's choice as JSON.
+fn lobe_json(lobe: &PlannedLobe, nodes: usize) -> Value {
+    json!({
+        "lobe": lobe.lobe,
+        "kept": lobe.kept,
+        "factors": factors_json(lobe.factors, nodes),
+        "error": lobe.error,
+        "cost": lobe.cost,
+    })
+}
+
+fn ops_json(o: &OpCounts) -> Value {
+    json!({
+        "add_mul": o.add_mul, "div": o.div, "sqrt": o.sqrt,
+        "transcendental": o.transcendental, "select": o.select, "fetch": o.fetch,
+    })
+}
+
+/// The plan as JSON: `choices`, `error`, `cost`, `shader` and the measurement's context.
+fn plan_json(scene: &Scene, plan: &Plan, file: &str, lang: &str) -> Value {
+    let nodes = plan.composition.far_field_nodes;
+    let point: serde_json::Map<String, Value> = plan
+        .worst_point
+        .values
+        .iter()
+        .map(|(k, v)| (k.name().to_string(), json!(v)))
+        .collect();
+    let arguments: Vec<&str> = ["wi", "wo"]
+        .into_iter()
+        .chain(plan.arguments.iter().copied())
+        .collect();
+    json!({
+        "budget": scene.budget,
+        "composition": plan.composition.describe(),
+        "choices": plan.lobes.iter().map(|l| lobe_json(l, nodes)).collect::<Vec<_>>(),
+        "far_field_nodes": if plan.composition.uses_far_field() { json!(nodes) } else { Value::Null },
+        "error": plan.error,
+        "worst_point": point,
+        "cost": plan.cost,
+        "ops": ops_json(&plan.ops),
+        "shader": {
+            "file": file,
+            "language": lang,
+            "function": "hair_bcsdf",
+            "arguments": arguments,
+        },
+        "points": plan.points.len(),
+        "combinations": plan.combinations,
+        "feasible": plan.feasible,
+    })
+}
+
+/// The plan as text: a line per lobe, then the totals.
+fn plan_text(scene: &Scene, plan: &Plan) -> String {
+    let mut s = format!(
+        "plan for budget E <= {} over {} hairs ({} combinations, {} within the budget)\n",
+        scene.budget,
+        plan.points.len(),
+        plan.combinations,
+        plan.feasible
+    );
+    s += "| lobe | factors | own error | cost alone |\n| --- | --- | ---: | ---: |\n";
+    for lobe in &plan.lobes {
+        let factors = match (lobe.factors, lobe.kept) {
+            (Some(f), _) => f.describe(),
+            (None, true) => "far field with d'Eon's M".to_string(),
+            (None, false) => "dropped".to_string(),
+        };
+        s += &format!(
+            "| {} | {factors} | {:.3e} | {} |\n",
+            lobe.lobe, lobe.error, lobe.cost
+        );
+    }
+    let worst: Vec<String> = plan
+        .worst_point
+        .values
+        .iter()
+        .map(|(k, v)| format!("{} = {v}", k.name()))
+        .collect();
+    let o = &plan.ops;
+    s += &format!(
+        "error E = {:.4e} (worst at {})\ncost = {} (add+mul {}, div {}, sqrt {}, transc. {}, \
+         select {}, fetch {})\nshader: hair_bcsdf(wi, wo{})\n",
+        plan.error,
+        worst.join(", "),
+        plan.cost,
+        o.add_mul,
+        o.div,
+        o.sqrt,
+        o.transcendental,
+        o.select,
+        o.fetch,
+        plan.arguments
+            .iter()
+            .map(|a| format!(", {a}"))
+            .collect::<String>(),
+    );
+    s
+}

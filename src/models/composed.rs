@@ -1,0 +1,948 @@
+//! A hair model composed per lobe and per factor: for each of Chiang et al. 2016's lobes R, TT
+//! and TRT a longitudinal factor M and an azimuthal factor N (with its attenuation A), or the
+//! lobe dropped, and the residual kept or dropped. The published real-time models are made of
+//! these factors (Karis 2016: the sine-space Gaussian M, his closed-form distributions and
+//! Fresnel; Frostbite 2019: the same M, the per-slice TT Gaussian table, single-offset
+//! attenuations); a [`Composition`] takes each factor from whichever source serves the scene
+//! best, and the scene planner ([`crate::plan`]) searches the compositions for the cheapest
+//! one whose error stays within a budget.
+//!
+//! # The factors
+//!
+//! Every lobe is `M_p(theta_i, theta_o) N_p(phi, theta_o)` per channel in the crate's
+//! convention (S with no cosine factor, so `M_p` is a density in `sin theta_i`), as in
+//! Chiang's far field `S = sum_p M_p N_p`, which every composition approximates:
+//!
+//! - [`Longitudinal::Deon`]: d'Eon et al. 2011's lobe with Chiang's variances `v`, `v/4`, `4v`
+//!   (eq. 7) and tilts `-2 alpha`, `alpha`, `4 alpha` (pbrt-v4), exactly Chiang's M
+//!   ([`crate::lobe::DeonLobe`]; its Bessel function in `f32` is Abramowitz and Stegun's
+//!   polynomial form).
+//! - [`Longitudinal::SineGaussian`]: Karis 2016's unit-area Gaussian in the sum of sines,
+//!   `g(B_p; sin theta_i + sin theta_o - c_p)` with `B_R = B`, `B_TT = B/2`, `B_TRT = 2B`,
+//!   `B = sqrt(v coth(1/v) - v^2)` (the R lobe's standard deviation in `sin theta_i` at normal
+//!   incidence, as [`crate::models::Frostbite`] maps beta_m) and `c_p = 2 sin(alpha_p)` for
+//!   Marschner's shifts `alpha_R = alpha`, `alpha_TT = -alpha/2`, `alpha_TRT = -3 alpha/2`.
+//! - [`Longitudinal::ThetaHGaussian`]: Marschner 2003's Gaussian in theta_h (eq. 6),
+//!   `g(beta_p; theta_h - alpha_p)` with `beta_R = sqrt(v)/2`, `beta_TT = beta_R/2`,
+//!   `beta_TRT = 2 beta_R`, converted to a density in `sin theta_i` as Marschner's `S` is:
+//!   `M = g cos theta_i / (2 cos^2 theta_d)` (theta_h moves at half the rate of theta_i; his
+//!   `1/cos^2 theta_d` floored at 1e-12, where the conversion diverges).
+//! - [`Azimuthal::FarField`]: Chiang's `N_p = 1/2 int A_p(h) D(phi - Phi(p, h)) dh` (eq. 8
+//!   with the trimmed logistic and the chord attenuation), by `n` Gauss-Legendre nodes in h
+//!   ([`crate::bcsdf::FarFieldRule`]), one loop shared by every lobe that chooses it and by
+//!   the residual (its `N_3 = A_3 / (2 pi)` with d'Eon's M of TRT's variance, untilted).
+//! - [`Azimuthal::KarisReflection`] (R only): Karis' `N_R = cos(phi/2)/4 F(eta,
+//!   sqrt((1 + wi.wo)/2))`, Schlick's Fresnel at the mirror reflection's angle of incidence.
+//! - [`Azimuthal::Separable`] (TT and TRT): a distribution `D(phi)` times an attenuation `A`:
+//!   - [`Distribution::Karis`]: `exp(a cos phi + b)` ([`crate::models::d_karis_of_cos`]) with
+//!     Karis' published or hairmath's refitted TT or TRT coefficients;
+//!   - [`Distribution::FrostbiteTable`] (TT only): Tafuri 2019's per-slice Gaussian
+//!     `a exp(-b (|phi| - pi)^2)` with `(a, b)` from the 9 x 10 table over
+//!     `(|theta_o|, beta_n)` ([`crate::models::frostbite_tt_table`], one fetch);
+//!   - [`Distribution::FrostbiteScaled`] (TRT only): Tafuri's `s_r exp(s_r (17 cos phi -
+//!     16.78))` ([`crate::models::d_trt_frostbite`]);
+//!   - [`Attenuation::Offset`]: Chiang's `A_p(h)` at one offset for the ray inclined at
+//!     theta_o ([`crate::models::offset_attenuation`]), at Frostbite's published offsets
+//!     (h_TT = 0, h_TRT = sqrt(3)/2) or hairmath's refits;
+//!   - [`Attenuation::Exponential`]: the unabsorbed `A_p` at the refitted offset times
+//!     Gerard's `e^(-k sigma_a)` ([`crate::models::gerard_attenuation`]) with his published
+//!     exponents (4, 11/2) or hairmath's refits against the exact lobe energies with the chord
+//!     path averaged over directions.
+//!
+//! The error of each factor against its exact counterpart is in the README (fits and lookup
+//! tables); the error of a whole composition against the far field is what the planner
+//! measures (`hairmath plan`).
+//!
+//! # Inputs
+//!
+//! Exactly [`HAIR_INPUTS`] with Chiang's meaning, as [`crate::models::Frostbite`] takes them,
+//! every one of them varying in shader code ([`VaryingInputs`]) with the clamps of
+//! [`crate::bcsdf::ChiangHair`]; the uniforms hold what every factor reads, and shader code
+//! computes and reads only those of the chosen factors.
+
+use super::constants::{GERARD_ABSORPTION_K_TRT, GERARD_ABSORPTION_K_TT};
+use super::frostbite::{offset_attenuation, tt_gaussian, Transmitted};
+use super::frostbite_hair::{d_trt_frostbite, frostbite_tt_table, trt_scale_of, FrostbiteVariant};
+use super::gerard::{gerard_attenuation, GERARD_K_TRT, GERARD_K_TT};
+use super::gerard_direct::GERARD_REFIT_ENTRY;
+use super::karis::{
+    d_karis_of_cos, ExpCosCoefficients, KARIS_D_TRT_TABLE, KARIS_D_TT_TABLE, REFIT_D_TRT_TABLE,
+    REFIT_D_TT_TABLE,
+};
+use super::unreal::{chiang_r_width_in_sines, r_azimuthal, Published, Refitted};
+use crate::bcsdf::{
+    eta_in, roughness_in, tilt_in, Bcsdf, ChiangFarField, ChiangUniforms, FarFieldRule, Input,
+    InputValues, InputsIn, Model, OffsetNodes, Offsets, OffsetsIn, Outgoing, PairAngles, Query,
+    VaryingInputs, HAIR_INPUTS,
+};
+use crate::error::ParamError;
+use crate::geometry::local_fibre_angles;
+use crate::lobe::gaussian_lobe;
+use crate::lut::SharedTable;
+use crate::params::HairParams;
+use crate::real::{safe_sqrt, NamedConstant, Real};
+
+/// The lobes of a composed model, in the order of [`Bcsdf::eval_lobes`].
+pub const COMPOSED_LOBES: [&str; 4] = ["R", "TT", "TRT", "residual"];
+
+/// The names of the lobes' values in shader code.
+const LOBE_LABELS: [&str; 3] = ["r_lobe", "tt_lobe", "trt_lobe"];
+
+/// The sine-space Gaussian's width `B` is floored here, so that the lobe stays finite in `f32`.
+const MIN_WIDTH: f64 = 1e-6;
+/// Marschner's `cos^2 theta_d` is floored here before it divides.
+const MIN_COS2_THETA_D: f64 = 1e-12;
+
+/// Published constants or hairmath's refits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Constants {
+    /// The values the source prints.
+    Published,
+    /// hairmath's refits (`src/models/constants.rs`, README "Fitted constants").
+    Refit,
+}
+
+impl Constants {
+    /// `published` or `refit`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Constants::Published => "published",
+            Constants::Refit => "refit",
+        }
+    }
+}
+
+/// A lobe's longitudinal factor M (module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Longitudinal {
+    /// d'Eon's lobe, Chiang's M.
+    Deon,
+    /// Karis' Gaussian in the sum of sines.
+    SineGaussian,
+    /// Marschner's Gaussian in theta_h with his cosine conversion.
+    ThetaHGaussian,
+}
+
+/// A transmitted lobe's distribution in phi (module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Distribution {
+    /// Karis' `exp(a cos phi + b)`.
+    Karis(Constants),
+    /// Frostbite's per-slice TT Gaussian from its table (TT only).
+    FrostbiteTable,
+    /// Frostbite's TRT distribution scaled by `s_r` (TRT only).
+    FrostbiteScaled,
+}
+
+/// A transmitted lobe's attenuation (module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Attenuation {
+    /// Chiang's `A_p` at Frostbite's single offset, published or refit.
+    Offset(Constants),
+    /// The unabsorbed `A_p` at the refitted offset times `e^(-k sigma_a)`, Gerard's k or the
+    /// refit.
+    Exponential(Constants),
+}
+
+/// A lobe's azimuthal factor N with its attenuation (module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Azimuthal {
+    /// Chiang's far field by the composition's Gauss-Legendre nodes.
+    FarField,
+    /// Karis' `cos(phi/2)/4` times Schlick's Fresnel (R only).
+    KarisReflection,
+    /// A distribution times an attenuation (TT and TRT).
+    Separable {
+        /// `D(phi)`.
+        distribution: Distribution,
+        /// `A`.
+        attenuation: Attenuation,
+    },
+}
+
+/// The factors of one kept lobe.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct LobeFactors {
+    /// M.
+    pub longitudinal: Longitudinal,
+    /// N with A.
+    pub azimuthal: Azimuthal,
+}
+
+/// One of the lobes a composition chooses factors for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ComposedLobe {
+    /// p = 0.
+    R,
+    /// p = 1.
+    Tt,
+    /// p = 2.
+    Trt,
+}
+
+impl ComposedLobe {
+    /// The three, in order.
+    pub const ALL: [ComposedLobe; 3] = [ComposedLobe::R, ComposedLobe::Tt, ComposedLobe::Trt];
+
+    /// Chiang's index p.
+    pub fn p(self) -> usize {
+        match self {
+            ComposedLobe::R => 0,
+            ComposedLobe::Tt => 1,
+            ComposedLobe::Trt => 2,
+        }
+    }
+
+    /// `R`, `TT` or `TRT`.
+    pub fn name(self) -> &'static str {
+        COMPOSED_LOBES[self.p()]
+    }
+
+    /// Whether `azimuthal` is a factor this lobe can take.
+    pub fn accepts(self, azimuthal: Azimuthal) -> bool {
+        match (self, azimuthal) {
+            (_, Azimuthal::FarField) => true,
+            (ComposedLobe::R, a) => a == Azimuthal::KarisReflection,
+            (_, Azimuthal::KarisReflection) => false,
+            (lobe, Azimuthal::Separable { distribution, .. }) => match distribution {
+                Distribution::Karis(_) => true,
+                Distribution::FrostbiteTable => lobe == ComposedLobe::Tt,
+                Distribution::FrostbiteScaled => lobe == ComposedLobe::Trt,
+            },
+        }
+    }
+}
+
+/// A choice of factors per lobe: the model a scene plan emits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Composition {
+    /// R's factors, or `None`: dropped.
+    pub r: Option<LobeFactors>,
+    /// TT's.
+    pub tt: Option<LobeFactors>,
+    /// TRT's.
+    pub trt: Option<LobeFactors>,
+    /// Whether the residual (p >= 3, far field) is kept.
+    pub residual: bool,
+    /// Gauss-Legendre nodes in h of the far field, where a lobe or the residual uses it (in
+    /// 1..=512; ignored otherwise).
+    pub far_field_nodes: usize,
+}
+
+/// A composition whose factors do not fit together.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum CompositionError {
+    /// A lobe given an azimuthal factor it cannot take.
+    #[error(
+        "the {lobe} lobe cannot take the azimuthal factor {azimuthal:?}: R takes FarField or \
+         KarisReflection, TT and TRT FarField or Separable (FrostbiteTable for TT only, \
+         FrostbiteScaled for TRT only)"
+    )]
+    Azimuthal {
+        /// The lobe.
+        lobe: &'static str,
+        /// The factor.
+        azimuthal: Azimuthal,
+    },
+    /// A far field with a node count outside 1..=512.
+    #[error("far_field_nodes = {0} is not allowed: the far field's node count must be in 1..=512")]
+    Nodes(usize),
+}
+
+impl Composition {
+    /// The factors of `lobe`.
+    pub fn lobe(&self, lobe: ComposedLobe) -> Option<LobeFactors> {
+        match lobe {
+            ComposedLobe::R => self.r,
+            ComposedLobe::Tt => self.tt,
+            ComposedLobe::Trt => self.trt,
+        }
+    }
+
+    /// The composition with `lobe`'s factors replaced by `factors`.
+    pub fn with_lobe(mut self, lobe: ComposedLobe, factors: Option<LobeFactors>) -> Self {
+        match lobe {
+            ComposedLobe::R => self.r = factors,
+            ComposedLobe::Tt => self.tt = factors,
+            ComposedLobe::Trt => self.trt = factors,
+        }
+        self
+    }
+
+    /// Whether a lobe or the residual reads the far field's loop.
+    pub fn uses_far_field(&self) -> bool {
+        self.residual
+            || ComposedLobe::ALL.iter().any(|&l| {
+                self.lobe(l)
+                    .is_some_and(|f| f.azimuthal == Azimuthal::FarField)
+            })
+    }
+
+    /// The composition in words: each lobe's factors or `dropped`, the residual, the far
+    /// field's nodes.
+    pub fn describe(&self) -> String {
+        let mut parts: Vec<String> = ComposedLobe::ALL
+            .iter()
+            .map(|&lobe| match self.lobe(lobe) {
+                Some(f) => format!("{}: {}", lobe.name(), f.describe()),
+                None => format!("{}: dropped", lobe.name()),
+            })
+            .collect();
+        parts.push(match self.residual {
+            true => "residual: far field".to_string(),
+            false => "residual: dropped".to_string(),
+        });
+        if self.uses_far_field() {
+            parts.push(format!("far field: {} nodes", self.far_field_nodes));
+        }
+        parts.join("; ")
+    }
+
+    /// Checks that every lobe's factors fit it and the node count, where used, is valid.
+    ///
+    /// # Errors
+    /// [`CompositionError`] naming the first problem.
+    pub fn check(&self) -> Result<(), CompositionError> {
+        for lobe in ComposedLobe::ALL {
+            if let Some(f) = self.lobe(lobe) {
+                if !lobe.accepts(f.azimuthal) {
+                    let (lobe, azimuthal) = (lobe.name(), f.azimuthal);
+                    return Err(CompositionError::Azimuthal { lobe, azimuthal });
+                }
+            }
+        }
+        let nodes_ok = (1..=crate::bcsdf::MAX_FAR_FIELD_NODES).contains(&self.far_field_nodes);
+        if self.uses_far_field() && !nodes_ok {
+            return Err(CompositionError::Nodes(self.far_field_nodes));
+        }
+        Ok(())
+    }
+}
+
+impl Longitudinal {
+    /// `deon`, `sine_gaussian` or `theta_h_gaussian`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Longitudinal::Deon => "deon",
+            Longitudinal::SineGaussian => "sine_gaussian",
+            Longitudinal::ThetaHGaussian => "theta_h_gaussian",
+        }
+    }
+}
+
+impl Distribution {
+    /// `karis_published`, `karis_refit`, `frostbite_table` or `frostbite_scaled`.
+    pub fn name(self) -> String {
+        match self {
+            Distribution::Karis(c) => format!("karis_{}", c.name()),
+            Distribution::FrostbiteTable => "frostbite_table".to_string(),
+            Distribution::FrostbiteScaled => "frostbite_scaled".to_string(),
+        }
+    }
+}
+
+impl Attenuation {
+    /// `offset_published`, `offset_refit`, `exponential_published` or `exponential_refit`.
+    pub fn name(self) -> String {
+        match self {
+            Attenuation::Offset(c) => format!("offset_{}", c.name()),
+            Attenuation::Exponential(c) => format!("exponential_{}", c.name()),
+        }
+    }
+}
+
+impl Azimuthal {
+    /// `far_field`, `karis_reflection` or `separable`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Azimuthal::FarField => "far_field",
+            Azimuthal::KarisReflection => "karis_reflection",
+            Azimuthal::Separable { .. } => "separable",
+        }
+    }
+}
+
+impl LobeFactors {
+    /// The factors in words (`M sine Gaussian, N Frostbite table x A offset (refit)`).
+    pub fn describe(&self) -> String {
+        let m = match self.longitudinal {
+            Longitudinal::Deon => "d'Eon",
+            Longitudinal::SineGaussian => "sine Gaussian",
+            Longitudinal::ThetaHGaussian => "theta_h Gaussian",
+        };
+        let n = match self.azimuthal {
+            Azimuthal::FarField => "far field".to_string(),
+            Azimuthal::KarisReflection => "Karis cos(phi/2)/4 x Schlick".to_string(),
+            Azimuthal::Separable {
+                distribution,
+                attenuation,
+            } => {
+                let d = match distribution {
+                    Distribution::Karis(c) => format!("Karis ({})", c.name()),
+                    Distribution::FrostbiteTable => "Frostbite table".to_string(),
+                    Distribution::FrostbiteScaled => "Frostbite s_r".to_string(),
+                };
+                let a = match attenuation {
+                    Attenuation::Offset(c) => format!("offset ({})", c.name()),
+                    Attenuation::Exponential(c) => format!("exp(-k sigma_a) ({})", c.name()),
+                };
+                format!("{d} x A {a}")
+            }
+        };
+        format!("M {m}, N {n}")
+    }
+}
+
+crate::uniform_block! {
+    /// The derived constants of a composed model: Chiang's ([`ChiangUniforms`], the far field
+    /// and d'Eon's lobes read them) and those of the other factors.
+    pub struct ComposedUniforms<R> {
+        /// Chiang's v_0.
+        pub variance_r: R,
+        /// v_0 / 4.
+        pub variance_tt: R,
+        /// 4 v_0.
+        pub variance_trt: R,
+        /// 1 / v_0.
+        pub inv_variance_r: R,
+        /// 1 / v_1.
+        pub inv_variance_tt: R,
+        /// 1 / v_2.
+        pub inv_variance_trt: R,
+        /// d'Eon's normalisation of R.
+        pub lobe_norm_r: R,
+        /// Of TT.
+        pub lobe_norm_tt: R,
+        /// Of TRT and the residual.
+        pub lobe_norm_trt: R,
+        /// The logistic's scale s (Chiang eq. 8).
+        pub logistic_scale: R,
+        /// 1 / s.
+        pub logistic_inv_scale: R,
+        /// The logistic's mass on [-pi, pi].
+        pub logistic_mass: R,
+        /// 1 / (s mass).
+        pub logistic_norm: R,
+        /// sin alpha.
+        pub sin_alpha: R,
+        /// cos alpha.
+        pub cos_alpha: R,
+        /// sin 2 alpha.
+        pub sin_2_alpha: R,
+        /// cos 2 alpha.
+        pub cos_2_alpha: R,
+        /// sin 4 alpha.
+        pub sin_4_alpha: R,
+        /// cos 4 alpha.
+        pub cos_4_alpha: R,
+        /// The relative index of refraction.
+        pub eta: R,
+        /// 1 / eta.
+        pub inv_eta: R,
+        /// Absorption per unit radius.
+        pub sigma_a: [R; 3],
+        /// `B`, the sine-space Gaussian's width of R.
+        pub sine_width_r: R,
+        /// `B / 2`, TT's.
+        pub sine_width_tt: R,
+        /// `2 B`, TRT's.
+        pub sine_width_trt: R,
+        /// `2 sin(alpha)`, R's centre in the sum of sines.
+        pub sine_shift_r: R,
+        /// `-2 sin(alpha / 2)`, TT's.
+        pub sine_shift_tt: R,
+        /// `-2 sin(3 alpha / 2)`, TRT's.
+        pub sine_shift_trt: R,
+        /// `sqrt(v) / 2`, Marschner's beta_R in theta_h.
+        pub theta_h_width_r: R,
+        /// beta_R / 2.
+        pub theta_h_width_tt: R,
+        /// 2 beta_R.
+        pub theta_h_width_trt: R,
+        /// alpha, R's shift in theta_h.
+        pub theta_h_shift_r: R,
+        /// -alpha / 2.
+        pub theta_h_shift_tt: R,
+        /// -3 alpha / 2.
+        pub theta_h_shift_trt: R,
+        /// beta_n, the Frostbite TT table's second coordinate.
+        pub beta_n: R,
+        /// Frostbite's `s_r` ([`crate::models::frostbite_trt_scale`]).
+        pub trt_scale: R,
+    }
+}
+
+impl<R: Real> ComposedUniforms<R> {
+    /// The uniforms of a hair in precision `R` (module documentation): Chiang's derivation
+    /// ([`ChiangUniforms`]) and the other factors' widths and shifts. Domain as
+    /// [`HairParams`].
+    fn derive(beta_m: R, beta_n: R, alpha: R, eta: R, sigma_a: [R; 3]) -> Self {
+        let c = ChiangUniforms::derive(beta_m, beta_n, alpha, eta, sigma_a);
+        let width = chiang_r_width_in_sines(beta_m).max(R::c(MIN_WIDTH));
+        let theta_h_width = R::c(0.5) * safe_sqrt(c.variance_r);
+        let (half, two) = (R::c(0.5), R::c(2.0));
+        ComposedUniforms {
+            variance_r: c.variance_r,
+            variance_tt: c.variance_tt,
+            variance_trt: c.variance_trt,
+            inv_variance_r: c.inv_variance_r,
+            inv_variance_tt: c.inv_variance_tt,
+            inv_variance_trt: c.inv_variance_trt,
+            lobe_norm_r: c.lobe_norm_r,
+            lobe_norm_tt: c.lobe_norm_tt,
+            lobe_norm_trt: c.lobe_norm_trt,
+            logistic_scale: c.logistic_scale,
+            logistic_inv_scale: c.logistic_inv_scale,
+            logistic_mass: c.logistic_mass,
+            logistic_norm: c.logistic_norm,
+            sin_alpha: c.sin_alpha,
+            cos_alpha: c.cos_alpha,
+            sin_2_alpha: c.sin_2_alpha,
+            cos_2_alpha: c.cos_2_alpha,
+            sin_4_alpha: c.sin_4_alpha,
+            cos_4_alpha: c.cos_4_alpha,
+            eta: c.eta,
+            inv_eta: c.inv_eta,
+            sigma_a: c.sigma_a,
+            sine_width_r: width,
+            sine_width_tt: half * width,
+            sine_width_trt: two * width,
+            sine_shift_r: two * alpha.sin(),
+            sine_shift_tt: -two * (half * alpha).sin(),
+            sine_shift_trt: -two * (R::c(1.5) * alpha).sin(),
+            theta_h_width_r: theta_h_width,
+            theta_h_width_tt: half * theta_h_width,
+            theta_h_width_trt: two * theta_h_width,
+            theta_h_shift_r: alpha,
+            theta_h_shift_tt: -half * alpha,
+            theta_h_shift_trt: R::c(-1.5) * alpha,
+            beta_n,
+            trt_scale: trt_scale_of(beta_n),
+        }
+    }
+
+    /// Chiang's uniforms among these.
+    fn chiang(&self) -> ChiangUniforms<R> {
+        ChiangUniforms {
+            variance_r: self.variance_r,
+            variance_tt: self.variance_tt,
+            variance_trt: self.variance_trt,
+            inv_variance_r: self.inv_variance_r,
+            inv_variance_tt: self.inv_variance_tt,
+            inv_variance_trt: self.inv_variance_trt,
+            lobe_norm_r: self.lobe_norm_r,
+            lobe_norm_tt: self.lobe_norm_tt,
+            lobe_norm_trt: self.lobe_norm_trt,
+            logistic_scale: self.logistic_scale,
+            logistic_inv_scale: self.logistic_inv_scale,
+            logistic_mass: self.logistic_mass,
+            logistic_norm: self.logistic_norm,
+            sin_alpha: self.sin_alpha,
+            cos_alpha: self.cos_alpha,
+            sin_2_alpha: self.sin_2_alpha,
+            cos_2_alpha: self.cos_2_alpha,
+            sin_4_alpha: self.sin_4_alpha,
+            cos_4_alpha: self.cos_4_alpha,
+            eta: self.eta,
+            inv_eta: self.inv_eta,
+            sigma_a: self.sigma_a,
+        }
+    }
+
+    /// `(width, centre)` of `lobe`'s sine-space Gaussian.
+    fn sine_gaussian(&self, lobe: ComposedLobe) -> (R, R) {
+        match lobe {
+            ComposedLobe::R => (self.sine_width_r, self.sine_shift_r),
+            ComposedLobe::Tt => (self.sine_width_tt, self.sine_shift_tt),
+            ComposedLobe::Trt => (self.sine_width_trt, self.sine_shift_trt),
+        }
+    }
+
+    /// `(width, shift)` of `lobe`'s Gaussian in theta_h.
+    fn theta_h_gaussian(&self, lobe: ComposedLobe) -> (R, R) {
+        match lobe {
+            ComposedLobe::R => (self.theta_h_width_r, self.theta_h_shift_r),
+            ComposedLobe::Tt => (self.theta_h_width_tt, self.theta_h_shift_tt),
+            ComposedLobe::Trt => (self.theta_h_width_trt, self.theta_h_shift_trt),
+        }
+    }
+}
+
+/// The uniforms from the values of [`HAIR_INPUTS`] in precision `R`, with Chiang's clamps.
+fn composed_uniforms_in<R: Real>(inputs: &InputsIn<R>) -> ComposedUniforms<R> {
+    let beta_n = roughness_in(inputs.number("beta_n"));
+    ComposedUniforms::derive(
+        roughness_in(inputs.number("beta_m")),
+        beta_n,
+        tilt_in(inputs.number("alpha")),
+        eta_in(inputs.number("eta")),
+        inputs.absorption("sigma_a").sigma_a(beta_n),
+    )
+}
+
+/// A hair model composed of the factors of a [`Composition`] (module documentation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ComposedHair<R> {
+    uniforms: ComposedUniforms<R>,
+    composition: Composition,
+    /// The far field's nodes (empty when no factor reads them).
+    nodes: OffsetNodes<R>,
+    /// Frostbite's TT Gaussians over (theta_o, beta_n).
+    tt_table: SharedTable<2, 2>,
+}
+
+impl ComposedHair<f64> {
+    /// The composed model of the hair `hair`.
+    ///
+    /// # Errors
+    /// [`CompositionError`] if the composition's factors do not fit together.
+    pub fn new(hair: &HairParams, composition: Composition) -> Result<Self, CompositionError> {
+        let uniforms = ComposedUniforms::derive(
+            hair.beta_m.get(),
+            hair.beta_n.get(),
+            hair.alpha.get(),
+            hair.eta.get(),
+            hair.sigma_a.rgb(),
+        );
+        Self::with_composed_uniforms(uniforms, composition)
+    }
+
+    /// The model of `composition` reading `uniforms`, with its node rule.
+    fn with_composed_uniforms(
+        uniforms: ComposedUniforms<f64>,
+        composition: Composition,
+    ) -> Result<Self, CompositionError> {
+        composition.check()?;
+        Ok(Self::checked(uniforms, composition))
+    }
+
+    /// The model of the checked `composition` reading `uniforms`, with its node rule (one
+    /// node, never read, when nothing reads the far field).
+    fn checked(uniforms: ComposedUniforms<f64>, composition: Composition) -> Self {
+        let nodes = match composition.uses_far_field() {
+            true => composition.far_field_nodes,
+            false => 1,
+        };
+        let rule = FarFieldRule::gauss_legendre(nodes)
+            .unwrap_or_else(|e| unreachable!("Composition::check bounds the node count: {e}"));
+        ComposedHair {
+            uniforms,
+            composition,
+            nodes: OffsetNodes::new(&rule),
+            tt_table: frostbite_tt_table(),
+        }
+    }
+
+    /// The model of the same composition for the hair `values` (the values of
+    /// [`HAIR_INPUTS`]).
+    ///
+    /// # Errors
+    /// [`ParamError`] for invalid values.
+    pub fn with_inputs(&self, values: &InputValues) -> Result<Self, ParamError> {
+        let hair = HairParams::from_inputs(values)?;
+        let uniforms = ComposedUniforms::derive(
+            hair.beta_m.get(),
+            hair.beta_n.get(),
+            hair.alpha.get(),
+            hair.eta.get(),
+            hair.sigma_a.rgb(),
+        );
+        Ok(Self::checked(uniforms, self.composition))
+    }
+}
+
+impl<R> ComposedHair<R> {
+    /// The composition.
+    pub fn composition(&self) -> &Composition {
+        &self.composition
+    }
+
+    /// Frostbite's TT table ([`frostbite_tt_table`]; read only by
+    /// [`Distribution::FrostbiteTable`]).
+    pub fn tt_table(&self) -> &SharedTable<2, 2> {
+        &self.tt_table
+    }
+}
+
+/// The angles the factors read, computed once per query.
+struct ComposedAngles<R> {
+    /// Chiang's (sin and cos of theta_i, and what the far field depends on).
+    pair: PairAngles<R>,
+    /// `sin theta_i + sin theta_o`.
+    sum_of_sines: R,
+    /// phi in [-pi, pi].
+    phi: R,
+    /// theta_i.
+    theta_i: R,
+    /// theta_o.
+    theta_o: R,
+    /// `wi . wo`.
+    v_dot_l: R,
+}
+
+impl<R: Real> ComposedAngles<R> {
+    fn of(query: &Query<R>) -> Self {
+        let a = local_fibre_angles(query.wi, query.wo);
+        let pair = PairAngles {
+            sin_i: a.sin_theta_i,
+            cos_i: a.cos_theta_i,
+            out: Outgoing {
+                sin_o: a.sin_theta_o,
+                cos_o: a.cos_theta_o,
+                phi: -a.phi,
+                h: R::c(0.0),
+            },
+        };
+        ComposedAngles {
+            pair,
+            sum_of_sines: (a.sin_theta_i + a.sin_theta_o).label("sum_of_sines"),
+            phi: a.phi,
+            theta_i: a.theta_i().label("theta_i"),
+            theta_o: a.theta_o().label("theta_o"),
+            v_dot_l: query.wi.dot(query.wo).label("v_dot_l"),
+        }
+    }
+}
+
+/// The offset Frostbite's attenuation of `path` is taken at, published or refit.
+fn offset_of(path: Transmitted, constants: Constants) -> &'static NamedConstant {
+    match (path, constants) {
+        (Transmitted::Tt, Constants::Published) => <Published as FrostbiteVariant>::TT_OFFSET,
+        (Transmitted::Trt, Constants::Published) => <Published as FrostbiteVariant>::TRT_OFFSET,
+        (Transmitted::Tt, Constants::Refit) => <Refitted as FrostbiteVariant>::TT_OFFSET,
+        (Transmitted::Trt, Constants::Refit) => <Refitted as FrostbiteVariant>::TRT_OFFSET,
+    }
+}
+
+/// Gerard's absorption exponent of `path`, published or refit (chord, averaged over
+/// directions).
+fn exponent_of(path: Transmitted, constants: Constants) -> f64 {
+    match (path, constants) {
+        (Transmitted::Tt, Constants::Published) => GERARD_K_TT,
+        (Transmitted::Trt, Constants::Published) => GERARD_K_TRT,
+        (Transmitted::Tt, Constants::Refit) => GERARD_ABSORPTION_K_TT[GERARD_REFIT_ENTRY],
+        (Transmitted::Trt, Constants::Refit) => GERARD_ABSORPTION_K_TRT[GERARD_REFIT_ENTRY],
+    }
+}
+
+/// Karis' coefficient table of `path`'s distribution, published or refit.
+fn karis_table(path: Transmitted, constants: Constants) -> &'static NamedConstant {
+    match (path, constants) {
+        (Transmitted::Tt, Constants::Published) => &KARIS_D_TT_TABLE,
+        (Transmitted::Trt, Constants::Published) => &KARIS_D_TRT_TABLE,
+        (Transmitted::Tt, Constants::Refit) => &REFIT_D_TT_TABLE,
+        (Transmitted::Trt, Constants::Refit) => &REFIT_D_TRT_TABLE,
+    }
+}
+
+impl<R: Real> ComposedHair<R> {
+    /// The far field's Chiang model (the loop and d'Eon's lobes read it).
+    fn chiang(&self) -> ChiangFarField<R> {
+        ChiangFarField::with_offsets(self.uniforms.chiang(), self.nodes.clone())
+    }
+
+    /// `lobe`'s longitudinal factor M; `deon` holds d'Eon's lobes of the four paths.
+    fn longitudinal(
+        &self,
+        lobe: ComposedLobe,
+        m: Longitudinal,
+        a: &ComposedAngles<R>,
+        deon: &[R; 4],
+    ) -> R {
+        let u = &self.uniforms;
+        match m {
+            Longitudinal::Deon => deon[lobe.p()],
+            Longitudinal::SineGaussian => {
+                let (width, centre) = u.sine_gaussian(lobe);
+                gaussian_lobe(width, a.sum_of_sines - centre)
+            }
+            Longitudinal::ThetaHGaussian => {
+                let (width, shift) = u.theta_h_gaussian(lobe);
+                let theta_h = (R::c(0.5) * (a.theta_i + a.theta_o)).label("theta_h");
+                let cos_d = (R::c(0.5) * (a.theta_o - a.theta_i))
+                    .cos()
+                    .label("cos_theta_d");
+                let conversion =
+                    R::c(0.5) * a.pair.cos_i / (cos_d * cos_d).max(R::c(MIN_COS2_THETA_D));
+                gaussian_lobe(width, theta_h - shift) * conversion
+            }
+        }
+    }
+
+    /// A transmitted lobe's `D(phi) A` per channel.
+    fn separable(
+        &self,
+        path: Transmitted,
+        distribution: Distribution,
+        attenuation: Attenuation,
+        a: &ComposedAngles<R>,
+    ) -> [R; 3] {
+        let u = &self.uniforms;
+        let cos_phi = a.phi.cos().label("cos_phi");
+        let d = match distribution {
+            Distribution::Karis(c) => {
+                d_karis_of_cos(cos_phi, ExpCosCoefficients::named(karis_table(path, c)))
+            }
+            Distribution::FrostbiteTable => {
+                let abs_theta_o = a.theta_o.abs();
+                let [height, sharpness] = self.tt_table.sample([abs_theta_o, u.beta_n]);
+                tt_gaussian(a.phi, height, sharpness)
+            }
+            Distribution::FrostbiteScaled => d_trt_frostbite(
+                cos_phi,
+                u.trt_scale,
+                ExpCosCoefficients::named(&KARIS_D_TRT_TABLE),
+            ),
+        };
+        let (sin_o, cos_o) = (a.pair.out.sin_o, a.pair.out.cos_o);
+        let at = |h: R, sigma_a: R| offset_attenuation(path, h, sigma_a, sin_o, cos_o, u.eta);
+        match attenuation {
+            Attenuation::Offset(c) => {
+                let h = offset_of(path, c).get::<R>();
+                u.sigma_a.map(|s| d * at(h, s))
+            }
+            Attenuation::Exponential(c) => {
+                let h = offset_of(path, Constants::Refit).get::<R>();
+                let unabsorbed = d * at(h, R::c(0.0));
+                let k = R::c(exponent_of(path, c));
+                u.sigma_a.map(|s| unabsorbed * gerard_attenuation(k, s))
+            }
+        }
+    }
+
+    /// `lobe`'s `N A` per channel; `far` holds the far field's `N_p A_p`.
+    fn azimuthal(
+        &self,
+        lobe: ComposedLobe,
+        n: Azimuthal,
+        a: &ComposedAngles<R>,
+        far: &[[R; 3]; 4],
+    ) -> [R; 3] {
+        match (n, lobe) {
+            (Azimuthal::FarField, _) => far[lobe.p()],
+            (Azimuthal::KarisReflection, _) => {
+                let cos_half_phi = (R::c(0.5) * a.phi).cos().max(R::c(0.0));
+                [r_azimuthal(cos_half_phi, a.v_dot_l, self.uniforms.eta); 3]
+            }
+            (Azimuthal::Separable { .. }, ComposedLobe::R) => {
+                unreachable!("Composition::check rejects a separable R lobe")
+            }
+            (
+                Azimuthal::Separable {
+                    distribution,
+                    attenuation,
+                },
+                _,
+            ) => {
+                let path = match lobe {
+                    ComposedLobe::Tt => Transmitted::Tt,
+                    _ => Transmitted::Trt,
+                };
+                self.separable(path, distribution, attenuation, a)
+            }
+        }
+    }
+
+    /// `[R, TT, TRT, residual]` per channel (a dropped lobe is 0).
+    fn lobes(&self, query: &Query<R>) -> [[R; 3]; 4] {
+        let a = ComposedAngles::of(query);
+        let chiang = self.chiang();
+        let deon = chiang.longitudinal(&a.pair);
+        let zero = [[R::c(0.0); 3]; 4];
+        let far = match self.composition.uses_far_field() {
+            true => {
+                chiang
+                    .offsets()
+                    .azimuthal::<_, false>(&chiang, a.pair.out)
+                    .0
+            }
+            false => zero,
+        };
+        let mut lobes = zero;
+        for lobe in ComposedLobe::ALL {
+            if let Some(f) = self.composition.lobe(lobe) {
+                let m = self.longitudinal(lobe, f.longitudinal, &a, &deon);
+                let n = self.azimuthal(lobe, f.azimuthal, &a, &far);
+                lobes[lobe.p()] = n.map(|x| (m * x).label(LOBE_LABELS[lobe.p()]));
+            }
+        }
+        if self.composition.residual {
+            lobes[3] = far[3].map(|x| deon[3] * x);
+        }
+        lobes
+    }
+}
+
+impl<R: Real> Bcsdf<R> for ComposedHair<R> {
+    fn lobe_names(&self) -> &'static [&'static str] {
+        &COMPOSED_LOBES
+    }
+
+    /// `[R, TT, TRT, residual]` per channel, a dropped lobe 0.
+    fn eval_lobes(&self, query: &Query<R>) -> Vec<[R; 3]> {
+        self.lobes(query).to_vec()
+    }
+
+    /// The sum of the kept lobes (no cosine factor).
+    fn eval(&self, query: &Query<R>) -> [R; 3] {
+        let lobes = self.lobes(query);
+        let mut sum = [R::c(0.0); 3];
+        let mut first = true;
+        for (p, lobe) in lobes.iter().enumerate() {
+            let kept = match p {
+                3 => self.composition.residual,
+                _ => self.composition.lobe(ComposedLobe::ALL[p]).is_some(),
+            };
+            if kept {
+                sum = match first {
+                    true => *lobe,
+                    false => core::array::from_fn(|c| sum[c] + lobe[c]),
+                };
+                first = false;
+            }
+        }
+        sum
+    }
+}
+
+impl Model for ComposedHair<f64> {
+    type Uniforms<R: Real> = ComposedUniforms<R>;
+    type In<R: Real> = ComposedHair<R>;
+
+    fn uniforms(&self) -> ComposedUniforms<f64> {
+        self.uniforms
+    }
+
+    fn with_uniforms<R: Real>(&self, uniforms: ComposedUniforms<R>) -> ComposedHair<R> {
+        ComposedHair {
+            uniforms,
+            composition: self.composition,
+            nodes: self.nodes.cast(),
+            tt_table: self.tt_table.clone(),
+        }
+    }
+}
+
+/// Every input of [`HAIR_INPUTS`], the absorption in each form.
+const COMPOSED_VARYING: [&str; 8] = [
+    "beta_m",
+    "beta_n",
+    "alpha",
+    "eta",
+    "sigma_a",
+    "color",
+    "eumelanin",
+    "pheomelanin",
+];
+
+impl VaryingInputs for ComposedHair<f64> {
+    const NAME: &'static str = "composed";
+    const INPUTS: &'static [Input] = &HAIR_INPUTS;
+    const VARYING: &'static [&'static str] = &COMPOSED_VARYING;
+    const BAKED: &'static [(&'static str, &'static str)] = &[];
+
+    fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> ComposedUniforms<R> {
+        composed_uniforms_in(inputs)
+    }
+}

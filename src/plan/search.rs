@@ -1,0 +1,841 @@
+//! The planner: the cheapest [`Composition`] whose error against Chiang et al. 2016's far
+//! field stays within a scene's budget over the scene's hair.
+//!
+//! # What is measured
+//!
+//! - **The scene's hair** ([`scene_points`]): every corner of the box of the parameters the
+//!   scene gives as ranges (or varying), and interior points of a Kronecker sequence in it; a
+//!   scene of fixed parameters is one point.
+//! - **Error** E at each point: the models issue's `E = sqrt(sum (S - S_ref)^2 / sum S_ref^2)`
+//!   over direction pairs ([`crate::diagnostics::DirectionPairs::kronecker`], weighted by
+//!   `cos theta_i cos theta_o`), against the far field with [`PlanSettings::reference_nodes`]
+//!   Gauss-Legendre nodes; a plan's error is the worst over the points.
+//! - **Cost** ([`OpWeights`]): the traced shader's operation counts
+//!   ([`crate::diagnostics::OpCounts`]) weighted per kind, with the scene's non-fixed
+//!   parameters as shader arguments (their uniforms computed in the shader).
+//!
+//! # The search
+//!
+//! Every lobe option (the lobe's factors, or dropped) is evaluated alone at every point and
+//! pair, in `f64`; its difference from the reference's lobe is a vector, and the error of any
+//! combination of options is exactly the norm of the sum of their vectors, which the planner
+//! computes for every combination from the vectors' inner products (a Gram matrix per point):
+//! no combination's error is assumed from its parts' errors. Costs are not additive (lobes
+//! share the angles and the far field's loop), so the combinations that meet the budget are
+//! ordered by an additive estimate (each option's cost alone, the far field's loop counted
+//! once) and the [`PlanSettings::traced_candidates`] first are traced; the cheapest of them by
+//! traced cost is the plan, and its error is measured once more as a whole
+//! ([`crate::diagnostics::ReferenceSamples::relative_error`] of the composed model itself).
+
+use super::scene::{CostMeasure, Environment, HairKey, Scene, SceneHair};
+use crate::absorption::Absorption;
+use crate::bcsdf::{
+    AbsorptionInput, Bcsdf, ChiangFarField, FarFieldRule, InputValue, InputValues, Query,
+    ShaderInputError, ShaderInputs,
+};
+use crate::diagnostics::{DirectionPairs, OpCounts, ReferenceSamples};
+use crate::error::ParamError;
+use crate::models::{
+    Attenuation, Azimuthal, ComposedHair, ComposedLobe, Composition, CompositionError, Constants,
+    Distribution, LobeFactors, Longitudinal,
+};
+use crate::params::{HairParams, HairValues};
+use crate::quadrature::kronecker;
+use crate::real::Graph;
+use rayon::prelude::*;
+
+/// How much each kind of traced operation costs, in units of an addition: the planner's
+/// `cost = "ops"`. The defaults follow the relative throughput of current GPUs' shader cores
+/// (additions, multiplications and selects at full rate; divisions and square roots as a
+/// reciprocal or reciprocal square root at quarter rate plus a multiply; exp, log, sin, cos
+/// and atan2 at quarter rate with their range reduction; a texture fetch of four channels
+/// with its address arithmetic): a convention, not a measurement of a device.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OpWeights {
+    /// An addition, subtraction, multiplication or negation.
+    pub add_mul: f64,
+    /// A division.
+    pub div: f64,
+    /// A square root.
+    pub sqrt: f64,
+    /// exp, log, sin, cos or atan2.
+    pub transcendental: f64,
+    /// min, max, abs, floor, a comparison or a select.
+    pub select: f64,
+    /// A texture sample.
+    pub fetch: f64,
+}
+
+impl OpWeights {
+    /// The defaults (type documentation): 1, 4, 4, 8, 1, 16.
+    pub const DEFAULT: OpWeights = OpWeights {
+        add_mul: 1.0,
+        div: 4.0,
+        sqrt: 4.0,
+        transcendental: 8.0,
+        select: 1.0,
+        fetch: 16.0,
+    };
+
+    /// The weighted sum of `counts`.
+    pub fn cost(&self, counts: &OpCounts) -> f64 {
+        self.add_mul * counts.add_mul as f64
+            + self.div * counts.div as f64
+            + self.sqrt * counts.sqrt as f64
+            + self.transcendental * counts.transcendental as f64
+            + self.select * counts.select as f64
+            + self.fetch * counts.fetch as f64
+    }
+}
+
+/// The planner's work: how many pairs, points and candidates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlanSettings {
+    /// Direction pairs per point ([`DirectionPairs::kronecker`]).
+    pub pairs: usize,
+    /// Gauss-Legendre nodes of the reference far field.
+    pub reference_nodes: usize,
+    /// Interior points of the scene's box besides its corners (0 for corners only).
+    pub interior_points: usize,
+    /// The node counts a composition's far field may take.
+    pub far_field_nodes: Vec<usize>,
+    /// Combinations meeting the budget that are traced for their exact cost.
+    pub traced_candidates: usize,
+    /// The cost of each kind of operation.
+    pub weights: OpWeights,
+}
+
+impl Default for PlanSettings {
+    /// 2^12 pairs, a 64-node reference, 4 interior points, far fields of 4 to 64 nodes, 64
+    /// traced candidates, [`OpWeights::DEFAULT`].
+    fn default() -> Self {
+        PlanSettings {
+            pairs: 1 << 12,
+            reference_nodes: 64,
+            interior_points: 4,
+            far_field_nodes: vec![4, 8, 16, 32, 64],
+            traced_candidates: 64,
+            weights: OpWeights::DEFAULT,
+        }
+    }
+}
+
+/// A scene the planner cannot plan, or a budget no composition meets.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum PlanError {
+    /// A part of the scene description the planner does not support yet.
+    #[error("{0}")]
+    Unsupported(&'static str),
+    /// No composition meets the budget.
+    #[error(
+        "no composition meets the budget {budget}: the most accurate one measured has E = \
+         {best_error:.4} ({best}); raise the budget"
+    )]
+    Infeasible {
+        /// The scene's budget.
+        budget: f64,
+        /// The lowest error of any combination.
+        best_error: f64,
+        /// That combination, described.
+        best: String,
+    },
+    /// Parameters outside their domains at a point of the scene.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    /// A composition whose factors do not fit together.
+    #[error(transparent)]
+    Composition(#[from] CompositionError),
+    /// A shader argument the composed model does not take.
+    #[error(transparent)]
+    Argument(#[from] ShaderInputError),
+}
+
+/// One hair of the scene: the values of its parameters (as the scene file gives them,
+/// `alpha_deg` in degrees) and the physical parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScenePoint {
+    /// `(key, value)` for each parameter, in the order of the file.
+    pub values: Vec<(HairKey, f64)>,
+    /// The hair.
+    pub params: HairParams,
+}
+
+impl ScenePoint {
+    /// The point's hair from the values of every key.
+    fn new(values: Vec<(HairKey, f64)>) -> Result<Self, ParamError> {
+        let get = |key: HairKey| values.iter().find(|(k, _)| *k == key).map_or(0.0, |v| v.1);
+        let sigma_a = Absorption::from_melanin(get(HairKey::Eumelanin), get(HairKey::Pheomelanin))?;
+        let params = HairParams::try_from(HairValues {
+            beta_m: get(HairKey::BetaM),
+            beta_n: get(HairKey::BetaN),
+            alpha: get(HairKey::AlphaDeg).to_radians(),
+            eta: get(HairKey::Eta),
+            sigma_a: sigma_a.rgb(),
+        })?;
+        Ok(ScenePoint { values, params })
+    }
+
+    /// The values of [`crate::bcsdf::HAIR_INPUTS`] for this hair, the absorption as melanin
+    /// (so that its concentrations can be shader arguments).
+    pub fn inputs(&self) -> InputValues {
+        let get = |key: HairKey| {
+            self.values
+                .iter()
+                .find(|(k, _)| *k == key)
+                .map_or(0.0, |v| v.1)
+        };
+        let mut values = self.params.to_inputs();
+        let melanin = AbsorptionInput::Melanin {
+            eumelanin: get(HairKey::Eumelanin),
+            pheomelanin: get(HairKey::Pheomelanin),
+        };
+        values.set("sigma_a", InputValue::Absorption(melanin));
+        values
+    }
+}
+
+/// The input of the composed model's shader a scene parameter becomes when it is not fixed:
+/// `eumelanin`, `pheomelanin`, `beta_m`, `beta_n`, `alpha` (radians) or `eta`.
+pub fn shader_argument(key: HairKey) -> &'static str {
+    match key {
+        HairKey::Eumelanin => "eumelanin",
+        HairKey::Pheomelanin => "pheomelanin",
+        HairKey::BetaM => "beta_m",
+        HairKey::BetaN => "beta_n",
+        HairKey::AlphaDeg => "alpha",
+        HairKey::Eta => "eta",
+    }
+}
+
+/// The hairs the planner measures a scene at (module documentation): the corners of the box
+/// of the non-fixed parameters, then `interior` points of the 3-dimensional... d-dimensional
+/// [`kronecker`] sequence inside it (none when every parameter is fixed: one point).
+///
+/// # Errors
+/// [`ParamError`] if a point's parameters are outside their domains.
+pub fn scene_points(hair: &SceneHair, interior: usize) -> Result<Vec<ScenePoint>, ParamError> {
+    let ranged = hair.non_fixed();
+    let at = |fractions: &[f64]| -> Vec<(HairKey, f64)> {
+        hair.params()
+            .iter()
+            .map(|&(key, range)| {
+                let value = match ranged.iter().position(|k| *k == key) {
+                    Some(i) => range.min() + fractions[i] * (range.max() - range.min()),
+                    None => range.min(),
+                };
+                (key, value)
+            })
+            .collect()
+    };
+    let mut points = Vec::new();
+    for corner in 0..(1usize << ranged.len()) {
+        let fractions: Vec<f64> = (0..ranged.len())
+            .map(|i| ((corner >> i) & 1) as f64)
+            .collect();
+        points.push(ScenePoint::new(at(&fractions))?);
+    }
+    if !ranged.is_empty() {
+        let mut u = vec![0.0; ranged.len()];
+        for k in 0..interior {
+            kronecker(k, ranged.len(), &mut u);
+            points.push(ScenePoint::new(at(&u))?);
+        }
+    }
+    Ok(points)
+}
+
+/// One lobe's option: its factors (or `None`, dropped) and the far-field node count it
+/// needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct LobeOption {
+    factors: Option<LobeFactors>,
+    nodes: Option<usize>,
+}
+
+/// The lobes a composition chooses options for, in the order of [`Composition`]'s fields:
+/// R, TT, TRT and the residual (index 3).
+const SLOTS: usize = 4;
+
+/// Every option of each slot (R, TT, TRT, residual).
+fn slot_options(far_field_nodes: &[usize]) -> [Vec<LobeOption>; SLOTS] {
+    let dropped = LobeOption {
+        factors: None,
+        nodes: None,
+    };
+    let ms = [
+        Longitudinal::Deon,
+        Longitudinal::SineGaussian,
+        Longitudinal::ThetaHGaussian,
+    ];
+    let constants = [Constants::Published, Constants::Refit];
+    let attenuations: Vec<Attenuation> = constants
+        .iter()
+        .flat_map(|&c| [Attenuation::Offset(c), Attenuation::Exponential(c)])
+        .collect();
+    let lobe = |lobe: ComposedLobe| {
+        let mut distributions: Vec<Distribution> =
+            constants.iter().map(|&c| Distribution::Karis(c)).collect();
+        distributions.push(Distribution::FrostbiteTable);
+        distributions.push(Distribution::FrostbiteScaled);
+        let mut azimuthals = vec![Azimuthal::KarisReflection];
+        for &distribution in &distributions {
+            for &attenuation in &attenuations {
+                azimuthals.push(Azimuthal::Separable {
+                    distribution,
+                    attenuation,
+                });
+            }
+        }
+        let mut options = vec![dropped];
+        for &longitudinal in &ms {
+            for &azimuthal in azimuthals.iter().filter(|&&a| lobe.accepts(a)) {
+                let factors = Some(LobeFactors {
+                    longitudinal,
+                    azimuthal,
+                });
+                options.push(LobeOption {
+                    factors,
+                    nodes: None,
+                });
+            }
+            for &n in far_field_nodes {
+                let azimuthal = Azimuthal::FarField;
+                let factors = Some(LobeFactors {
+                    longitudinal,
+                    azimuthal,
+                });
+                options.push(LobeOption {
+                    factors,
+                    nodes: Some(n),
+                });
+            }
+        }
+        options
+    };
+    let residual = core::iter::once(dropped)
+        .chain(far_field_nodes.iter().map(|&n| LobeOption {
+            factors: None,
+            nodes: Some(n),
+        }))
+        .collect();
+    [
+        lobe(ComposedLobe::R),
+        lobe(ComposedLobe::Tt),
+        lobe(ComposedLobe::Trt),
+        residual,
+    ]
+}
+
+/// The composition of one option per slot (the residual kept when its option has nodes).
+fn compose(options: [&LobeOption; SLOTS]) -> Composition {
+    let nodes = options.iter().find_map(|o| o.nodes).unwrap_or(1);
+    Composition {
+        r: options[0].factors,
+        tt: options[1].factors,
+        trt: options[2].factors,
+        residual: options[3].nodes.is_some(),
+        far_field_nodes: nodes,
+    }
+}
+
+/// The composition of `option` in `slot` alone (every other slot dropped).
+fn alone(slot: usize, option: &LobeOption) -> Composition {
+    let dropped = LobeOption {
+        factors: None,
+        nodes: None,
+    };
+    let mut options = [&dropped; SLOTS];
+    options[slot] = option;
+    compose(options)
+}
+
+/// The reference at one point: per pair the weighted lobes, and the weighted sum of squares
+/// of S.
+struct PointReference {
+    /// `sqrt(w) S_ref,p` per slot, flattened over pairs and channels.
+    lobes: [Vec<f64>; SLOTS],
+    /// `sum w S_ref^2`.
+    norm: f64,
+}
+
+/// `sqrt(w) S_p` per slot for `model` on `pairs`, flattened over pairs and channels.
+fn weighted_lobes<M: Bcsdf<f64> + ?Sized>(model: &M, pairs: &DirectionPairs) -> [Vec<f64>; SLOTS] {
+    let mut out: [Vec<f64>; SLOTS] = Default::default();
+    for (&(wi, wo), &w) in pairs.pairs().iter().zip(pairs.weights()) {
+        let root = w.sqrt();
+        let lobes = model.eval_lobes(&Query::far(wi, wo));
+        for (slot, lobe) in out.iter_mut().zip(&lobes) {
+            slot.extend(lobe.iter().map(|v| root * v));
+        }
+    }
+    out
+}
+
+impl PointReference {
+    fn new(point: &ScenePoint, pairs: &DirectionPairs, nodes: usize) -> Result<Self, ParamError> {
+        let rule = FarFieldRule::gauss_legendre(nodes)?;
+        let reference = ChiangFarField::<f64>::with_rule(&point.params, &rule);
+        let lobes = weighted_lobes(&reference, pairs);
+        let norm = (0..lobes[0].len())
+            .map(|i| lobes.iter().map(|l| l[i]).sum::<f64>().powi(2))
+            .sum();
+        Ok(PointReference { lobes, norm })
+    }
+}
+
+/// The inner products of the options' differences from the reference at one point.
+struct Gram {
+    /// Offsets of each slot's options in the flat option index.
+    start: [usize; SLOTS],
+    /// `<d_a, d_b>` for every pair of options (row-major over the flat index).
+    products: Vec<f64>,
+    size: usize,
+    /// `sum w S_ref^2`.
+    norm: f64,
+}
+
+impl Gram {
+    /// The product of option `a` of slot `sa` with option `b` of slot `sb`.
+    fn get(&self, sa: usize, a: usize, sb: usize, b: usize) -> f64 {
+        self.products[(self.start[sa] + a) * self.size + self.start[sb] + b]
+    }
+
+    /// E^2 of one option per slot (`choice[slot]` its index).
+    fn squared_error(&self, choice: [usize; SLOTS]) -> f64 {
+        let mut sum = 0.0;
+        for sa in 0..SLOTS {
+            sum += self.get(sa, choice[sa], sa, choice[sa]);
+            for sb in sa + 1..SLOTS {
+                sum += 2.0 * self.get(sa, choice[sa], sb, choice[sb]);
+            }
+        }
+        sum.max(0.0) / self.norm.max(f64::MIN_POSITIVE)
+    }
+}
+
+/// The differences `sqrt(w) (S_option,p - S_ref,p)` of every option at one point, and their
+/// Gram matrix.
+fn measure_point(
+    point: &ScenePoint,
+    pairs: &DirectionPairs,
+    reference_nodes: usize,
+    options: &[Vec<LobeOption>; SLOTS],
+) -> Result<Gram, ParamError> {
+    let reference = PointReference::new(point, pairs, reference_nodes)?;
+    let mut differences: Vec<Vec<f64>> = Vec::new();
+    let mut start = [0; SLOTS];
+    for (slot, slot_options) in options.iter().enumerate() {
+        start[slot] = differences.len();
+        for option in slot_options {
+            let model = ComposedHair::new(&point.params, alone(slot, option))
+                .unwrap_or_else(|e| unreachable!("the options fit their lobes: {e}"));
+            let values = weighted_lobes(&model, pairs);
+            let d = values[slot]
+                .iter()
+                .zip(&reference.lobes[slot])
+                .map(|(v, r)| v - r)
+                .collect();
+            differences.push(d);
+        }
+    }
+    let size = differences.len();
+    let mut products = vec![0.0; size * size];
+    for a in 0..size {
+        for b in a..size {
+            let p: f64 = differences[a]
+                .iter()
+                .zip(&differences[b])
+                .map(|(x, y)| x * y)
+                .sum();
+            products[a * size + b] = p;
+            products[b * size + a] = p;
+        }
+    }
+    Ok(Gram {
+        start,
+        products,
+        size,
+        norm: reference.norm,
+    })
+}
+
+/// One chosen factor set of a plan, with its own measurements.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlannedLobe {
+    /// `R`, `TT`, `TRT` or `residual`.
+    pub lobe: &'static str,
+    /// The factors (`None`: dropped; the residual's far field is `FarField` with d'Eon's M).
+    pub factors: Option<LobeFactors>,
+    /// Whether the lobe is kept (the residual has no factors of its own).
+    pub kept: bool,
+    /// The lobe's own error: `sqrt(sum (S_p - S_ref,p)^2 / sum S_ref^2)`, the worst over the
+    /// scene's points (a dropped lobe's is its share of the reference).
+    pub error: f64,
+    /// The weighted cost of a shader of this lobe alone.
+    pub cost: f64,
+}
+
+/// The planner's result.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    /// The chosen composition.
+    pub composition: Composition,
+    /// Its error E, the worst over the scene's points, measured on the composed model as a
+    /// whole.
+    pub error: f64,
+    /// The point with that error.
+    pub worst_point: ScenePoint,
+    /// Its weighted traced cost ([`OpWeights`]).
+    pub cost: f64,
+    /// Its traced operation counts.
+    pub ops: OpCounts,
+    /// The choice per lobe (R, TT, TRT, residual).
+    pub lobes: Vec<PlannedLobe>,
+    /// The shader arguments after wo, in the order of the scene file.
+    pub arguments: Vec<&'static str>,
+    /// The traced shader (`hair_bcsdf`).
+    pub graph: Graph,
+    /// The points measured.
+    pub points: Vec<ScenePoint>,
+    /// The combinations evaluated, and how many of them met the budget.
+    pub combinations: usize,
+    /// Of those, how many met the budget.
+    pub feasible: usize,
+}
+
+/// The shader of `composition` for a scene's hair: `hair_bcsdf` with the parameters
+/// `arguments` (names of [`shader_argument`], in order) as arguments after wo, every other
+/// parameter baked at `point`'s value.
+///
+/// # Errors
+/// [`CompositionError`] if the composition's factors do not fit together, or an argument is
+/// no input of the composed model (its message names the model's inputs).
+pub fn trace_composition(
+    composition: Composition,
+    point: &ScenePoint,
+    arguments: &[&str],
+) -> Result<Graph, PlanError> {
+    let model = ComposedHair::new(&point.params, composition)?;
+    let inputs = ShaderInputs::new(&model, &point.inputs(), arguments)?;
+    Ok(inputs.trace())
+}
+
+/// [`trace_composition`] of a composition the planner built, with its counts and cost.
+fn traced(
+    composition: Composition,
+    point: &ScenePoint,
+    arguments: &[&str],
+    weights: &OpWeights,
+) -> Result<(Graph, OpCounts, f64), PlanError> {
+    let graph = trace_composition(composition, point, arguments)?;
+    let ops = OpCounts::of(&graph);
+    Ok((graph, ops, weights.cost(&ops)))
+}
+
+/// A combination of options (indices per slot) with its worst error and estimated cost.
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    choice: [usize; SLOTS],
+    error: f64,
+    estimate: f64,
+}
+
+/// The cheapest composition meeting `scene`'s budget (module documentation). `progress` is
+/// called with (done, total) as the points are measured.
+///
+/// # Errors
+/// [`PlanError::Unsupported`] for `cost = "llvmpipe"` and SH environment lighting (not yet
+/// planned), [`PlanError::Infeasible`] when no composition meets the budget,
+/// [`PlanError::Param`] for a scene point outside the parameters' domains.
+pub fn plan(
+    scene: &Scene,
+    settings: &PlanSettings,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Plan, PlanError> {
+    check_supported(scene)?;
+    let points = scene_points(&scene.hair, settings.interior_points)?;
+    let arguments: Vec<&'static str> = scene
+        .hair
+        .non_fixed()
+        .into_iter()
+        .map(shader_argument)
+        .collect();
+    let pairs = DirectionPairs::kronecker(settings.pairs);
+    let options = slot_options(&settings.far_field_nodes);
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let grams: Vec<Gram> = points
+        .par_iter()
+        .map(|point| {
+            let gram = measure_point(point, &pairs, settings.reference_nodes, &options);
+            let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            progress(n, points.len());
+            gram
+        })
+        .collect::<Result<_, _>>()?;
+    let centre = &points[points.len() - 1];
+    let costs = option_costs(&options, centre, &arguments, &settings.weights)?;
+    let (candidates, combinations, best) =
+        combinations_within(scene.budget, &options, &grams, &costs);
+    let feasible = candidates.len();
+    let chosen = cheapest_traced(
+        scene.budget,
+        &candidates,
+        &options,
+        centre,
+        &arguments,
+        settings,
+        |c| worst_error(c, &points, &pairs, settings.reference_nodes),
+    )?;
+    let Some((composition, graph, ops, cost, (error, worst))) = chosen else {
+        return Err(PlanError::Infeasible {
+            budget: scene.budget,
+            best_error: best.1,
+            best: compose(choice_options(&options, best.0)).describe(),
+        });
+    };
+    let choice = candidates
+        .iter()
+        .find(|c| compose(choice_options(&options, c.choice)) == composition)
+        .map(|c| c.choice)
+        .unwrap_or_else(|| unreachable!("the plan is one of the candidates"));
+    let lobes = planned_lobes(&options, choice, &grams, &costs);
+    Ok(Plan {
+        composition,
+        error,
+        worst_point: points[worst].clone(),
+        cost,
+        ops,
+        lobes,
+        arguments,
+        graph,
+        points,
+        combinations,
+        feasible,
+    })
+}
+
+/// The parts of a scene the planner supports.
+fn check_supported(scene: &Scene) -> Result<(), PlanError> {
+    if scene.cost == CostMeasure::Llvmpipe {
+        return Err(PlanError::Unsupported(
+            "cost = \"llvmpipe\" is not supported yet: the planner ranks compositions by \
+             cost = \"ops\" (weighted traced operation counts); `cargo bench --bench \
+             shader_device` measures the published models on llvmpipe",
+        ));
+    }
+    if scene.lights.environment != Environment::None {
+        return Err(PlanError::Unsupported(
+            "environment = \"sh\" is not supported yet: the planner measures directional \
+             lighting (environment = \"none\")",
+        ));
+    }
+    Ok(())
+}
+
+/// The options of one choice (indices per slot).
+fn choice_options(
+    options: &[Vec<LobeOption>; SLOTS],
+    choice: [usize; SLOTS],
+) -> [&LobeOption; SLOTS] {
+    core::array::from_fn(|s| &options[s][choice[s]])
+}
+
+/// Each option's cost alone, the far field's loop excluded (`(costs per slot, loop cost per
+/// node count)`): the additive estimate's terms.
+struct OptionCosts {
+    alone: [Vec<f64>; SLOTS],
+    far_field_loop: Vec<(usize, f64)>,
+}
+
+impl OptionCosts {
+    /// The additive estimate of a combination's cost.
+    fn estimate(&self, options: [&LobeOption; SLOTS], choice: [usize; SLOTS]) -> f64 {
+        let nodes = options.iter().find_map(|o| o.nodes);
+        let far = nodes.map_or(0.0, |n| self.loop_cost(n));
+        let sum: f64 = (0..SLOTS).map(|s| self.alone[s][choice[s]]).sum();
+        // Each far-field option's cost alone includes the loop: count it once.
+        let loops = options.iter().filter(|o| o.nodes.is_some()).count() as f64;
+        sum - loops * far + far
+    }
+
+    fn loop_cost(&self, n: usize) -> f64 {
+        self.far_field_loop
+            .iter()
+            .find(|(m, _)| *m == n)
+            .map_or(0.0, |(_, c)| *c)
+    }
+}
+
+/// [`OptionCosts`] of every option, traced at `point` with `arguments` varying.
+fn option_costs(
+    options: &[Vec<LobeOption>; SLOTS],
+    point: &ScenePoint,
+    arguments: &[&str],
+    weights: &OpWeights,
+) -> Result<OptionCosts, PlanError> {
+    let mut alone_costs: [Vec<f64>; SLOTS] = Default::default();
+    for (slot, slot_options) in options.iter().enumerate() {
+        for option in slot_options {
+            alone_costs[slot].push(traced(alone(slot, option), point, arguments, weights)?.2);
+        }
+    }
+    // The residual alone is the loop and d'Eon's untilted lobe: the loop's cost.
+    let far_field_loop = options[3]
+        .iter()
+        .zip(&alone_costs[3])
+        .filter_map(|(o, &c)| o.nodes.map(|n| (n, c)))
+        .collect();
+    Ok(OptionCosts {
+        alone: alone_costs,
+        far_field_loop,
+    })
+}
+
+/// Every combination of options whose far fields agree on the node count: those whose worst
+/// error over the points is within `budget` (sorted by estimated cost), how many were
+/// evaluated, and the most accurate one `(choice, error)`.
+fn combinations_within(
+    budget: f64,
+    options: &[Vec<LobeOption>; SLOTS],
+    grams: &[Gram],
+    costs: &OptionCosts,
+) -> (Vec<Candidate>, usize, ([usize; SLOTS], f64)) {
+    let mut within = Vec::new();
+    let mut count = 0;
+    let mut best = ([0; SLOTS], f64::INFINITY);
+    let budget2 = budget * budget;
+    for_each_choice(options, |choice| {
+        count += 1;
+        let worst2 = grams
+            .iter()
+            .map(|g| g.squared_error(choice))
+            .fold(0.0, f64::max);
+        let error = worst2.sqrt();
+        if error < best.1 {
+            best = (choice, error);
+        }
+        if worst2 <= budget2 {
+            let estimate = costs.estimate(choice_options(options, choice), choice);
+            within.push(Candidate {
+                choice,
+                error,
+                estimate,
+            });
+        }
+    });
+    within.sort_by(|a, b| {
+        a.estimate
+            .total_cmp(&b.estimate)
+            .then(a.error.total_cmp(&b.error))
+    });
+    (within, count, best)
+}
+
+/// Calls `f` with every choice (an option index per slot) whose far-field options share one
+/// node count.
+fn for_each_choice(options: &[Vec<LobeOption>; SLOTS], mut f: impl FnMut([usize; SLOTS])) {
+    let agree = |a: Option<usize>, b: Option<usize>| match (a, b) {
+        (Some(x), Some(y)) => x == y,
+        _ => true,
+    };
+    for (i, oi) in options[0].iter().enumerate() {
+        for (j, oj) in options[1].iter().enumerate() {
+            if !agree(oi.nodes, oj.nodes) {
+                continue;
+            }
+            let n_ij = oi.nodes.or(oj.nodes);
+            for (k, ok) in options[2].iter().enumerate() {
+                if !agree(n_ij, ok.nodes) {
+                    continue;
+                }
+                let n_ijk = n_ij.or(ok.nodes);
+                for (l, ol) in options[3].iter().enumerate() {
+                    if agree(n_ijk, ol.nodes) {
+                        f([i, j, k, l]);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The measured composition: its traced graph, counts and cost, and `(worst error, worst
+/// point)`.
+type Measured = (Composition, Graph, OpCounts, f64, (f64, usize));
+
+/// Of the first [`PlanSettings::traced_candidates`] candidates, the cheapest by traced cost
+/// whose error measured as a whole (`measure`) is within `budget`.
+fn cheapest_traced(
+    budget: f64,
+    candidates: &[Candidate],
+    options: &[Vec<LobeOption>; SLOTS],
+    point: &ScenePoint,
+    arguments: &[&str],
+    settings: &PlanSettings,
+    measure: impl Fn(Composition) -> Result<(f64, usize), PlanError>,
+) -> Result<Option<Measured>, PlanError> {
+    let mut traced_candidates: Vec<(Composition, Graph, OpCounts, f64, f64)> = Vec::new();
+    for candidate in candidates.iter().take(settings.traced_candidates.max(1)) {
+        let composition = compose(choice_options(options, candidate.choice));
+        let (graph, ops, cost) = traced(composition, point, arguments, &settings.weights)?;
+        traced_candidates.push((composition, graph, ops, cost, candidate.error));
+    }
+    traced_candidates.sort_by(|a, b| a.3.total_cmp(&b.3).then(a.4.total_cmp(&b.4)));
+    for (composition, graph, ops, cost, _) in traced_candidates {
+        let whole = measure(composition)?;
+        if whole.0 <= budget {
+            return Ok(Some((composition, graph, ops, cost, whole)));
+        }
+    }
+    Ok(None)
+}
+
+/// The worst error over `points` of the composed model of `composition` as a whole, and the
+/// index of the point.
+pub fn worst_error(
+    composition: Composition,
+    points: &[ScenePoint],
+    pairs: &DirectionPairs,
+    reference_nodes: usize,
+) -> Result<(f64, usize), PlanError> {
+    let rule = FarFieldRule::gauss_legendre(reference_nodes)?;
+    let mut worst = (0.0, 0);
+    for (i, point) in points.iter().enumerate() {
+        let reference = ChiangFarField::<f64>::with_rule(&point.params, &rule);
+        let samples = ReferenceSamples::new(&reference, pairs.clone());
+        let model = ComposedHair::new(&point.params, composition)?;
+        let error = samples.relative_error(&model).full;
+        if error > worst.0 || i == 0 {
+            worst = (error, i);
+        }
+    }
+    Ok(worst)
+}
+
+/// The choice per slot with its own error (worst over the points) and cost alone.
+fn planned_lobes(
+    options: &[Vec<LobeOption>; SLOTS],
+    choice: [usize; SLOTS],
+    grams: &[Gram],
+    costs: &OptionCosts,
+) -> Vec<PlannedLobe> {
+    const NAMES: [&str; SLOTS] = ["R", "TT", "TRT", "residual"];
+    (0..SLOTS)
+        .map(|s| {
+            let option = &options[s][choice[s]];
+            let own = grams
+                .iter()
+                .map(|g| g.get(s, choice[s], s, choice[s]).max(0.0) / g.norm.max(f64::MIN_POSITIVE))
+                .fold(0.0, f64::max)
+                .sqrt();
+            PlannedLobe {
+                lobe: NAMES[s],
+                factors: option.factors,
+                kept: option.factors.is_some() || option.nodes.is_some(),
+                error: own,
+                cost: costs.alone[s][choice[s]],
+            }
+        })
+        .collect()
+}
