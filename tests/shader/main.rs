@@ -12,4 +12,6 @@ mod committed;
 mod error_bound;
 mod gpu;
 mod models;
+#[cfg(feature = "plan")]
+mod plan;
 mod tools;

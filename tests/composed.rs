@@ -1,0 +1,345 @@
+//! The composed model (`models::ComposedHair`): its far field is Chiang's, its Frostbite
+//! composition is the Frostbite model, every factor is finite and non-negative on the hard
+//! cases and over the parameters' domains, its `f32` code is what its traced shader computes,
+//! and compositions whose factors do not fit are typed errors.
+
+use core::f64::consts::{FRAC_PI_2, PI};
+use hairmath::absorption::Absorption;
+use hairmath::bcsdf::{
+    trace_eval_with, Bcsdf, ChiangFarField, FarFieldRule, Model, Query, UniformsIn,
+};
+use hairmath::geometry::{local_direction, V3};
+use hairmath::models::{
+    Attenuation, Azimuthal, ComposedHair, ComposedLobe, Composition, CompositionError, Constants,
+    Distribution, Frostbite, LobeFactors, Longitudinal,
+};
+use hairmath::params::{HairParams, HairValues};
+use proptest::prelude::*;
+
+fn hair(beta_m: f64, beta_n: f64, alpha_deg: f64, eta: f64, sigma_a: f64) -> HairParams {
+    HairParams::try_from(HairValues {
+        beta_m,
+        beta_n,
+        alpha: alpha_deg.to_radians(),
+        eta,
+        sigma_a: [sigma_a, 0.5 * sigma_a, 0.25 * sigma_a],
+    })
+    .expect("valid parameters")
+}
+
+fn brown() -> HairParams {
+    let sigma_a = Absorption::from_melanin(1.3, 0.0).expect("melanin").rgb();
+    HairParams::try_from(HairValues {
+        beta_m: 0.3,
+        beta_n: 0.3,
+        alpha: 2f64.to_radians(),
+        eta: 1.55,
+        sigma_a,
+    })
+    .expect("valid parameters")
+}
+
+fn direction(theta: f64, phi: f64) -> V3<f64> {
+    local_direction(theta.sin(), theta.cos(), phi)
+}
+
+/// Along the tangent both ways, grazing, wi = wo, wi = -wo, phi = 0 and +-pi, generic pairs.
+fn hard_pairs() -> Vec<(V3<f64>, V3<f64>)> {
+    let along = V3::new(1.0, 0.0, 0.0);
+    let against = V3::new(-1.0, 0.0, 0.0);
+    let mut pairs = vec![
+        (along, along),
+        (along, against),
+        (against, along),
+        (
+            direction(FRAC_PI_2 - 1e-7, 0.2),
+            direction(-FRAC_PI_2 + 1e-7, 0.2),
+        ),
+    ];
+    for (theta_i, theta_o) in [(0.0, 0.0), (0.4, -0.4), (-1.2, 0.3), (1.55, -1.55)] {
+        for phi in [0.0, PI, -PI, 1.1] {
+            pairs.push((direction(theta_i, phi), direction(theta_o, 0.0)));
+        }
+        let w = direction(theta_i, 0.7);
+        pairs.push((w, w));
+        pairs.push((w, V3::new(-w.x, -w.y, -w.z)));
+    }
+    pairs
+}
+
+/// Every factor set each lobe takes.
+fn every_lobe_option(lobe: ComposedLobe) -> Vec<LobeFactors> {
+    let constants = [Constants::Published, Constants::Refit];
+    let mut azimuthals = vec![Azimuthal::FarField, Azimuthal::KarisReflection];
+    let mut distributions: Vec<Distribution> = constants.map(Distribution::Karis).to_vec();
+    distributions.extend([Distribution::FrostbiteTable, Distribution::FrostbiteScaled]);
+    for distribution in distributions {
+        for c in constants {
+            for attenuation in [Attenuation::Offset(c), Attenuation::Exponential(c)] {
+                azimuthals.push(Azimuthal::Separable {
+                    distribution,
+                    attenuation,
+                });
+            }
+        }
+    }
+    let ms = [
+        Longitudinal::Deon,
+        Longitudinal::SineGaussian,
+        Longitudinal::ThetaHGaussian,
+    ];
+    let mut out = Vec::new();
+    for longitudinal in ms {
+        for &azimuthal in azimuthals.iter().filter(|&&a| lobe.accepts(a)) {
+            out.push(LobeFactors {
+                longitudinal,
+                azimuthal,
+            });
+        }
+    }
+    out
+}
+
+/// One composition per lobe option (the lobe alone), plus the residual alone.
+fn every_single_lobe_composition(nodes: usize) -> Vec<Composition> {
+    let empty = Composition {
+        r: None,
+        tt: None,
+        trt: None,
+        residual: false,
+        far_field_nodes: nodes,
+    };
+    let mut out = vec![Composition {
+        residual: true,
+        ..empty
+    }];
+    for lobe in ComposedLobe::ALL {
+        for f in every_lobe_option(lobe) {
+            out.push(empty.with_lobe(lobe, Some(f)));
+        }
+    }
+    out
+}
+
+#[test]
+fn every_lobe_takes_the_options_the_planner_offers() {
+    assert_eq!(every_lobe_option(ComposedLobe::R).len(), 6);
+    assert_eq!(every_lobe_option(ComposedLobe::Tt).len(), 39);
+    assert_eq!(every_lobe_option(ComposedLobe::Trt).len(), 39);
+}
+
+#[test]
+fn the_far_field_composition_is_chiangs_far_field() {
+    let deon_far = Some(LobeFactors {
+        longitudinal: Longitudinal::Deon,
+        azimuthal: Azimuthal::FarField,
+    });
+    let composition = Composition {
+        r: deon_far,
+        tt: deon_far,
+        trt: deon_far,
+        residual: true,
+        far_field_nodes: 32,
+    };
+    let params = brown();
+    let composed = ComposedHair::new(&params, composition).expect("valid");
+    let chiang = ChiangFarField::<f64>::with_rule(
+        &params,
+        &FarFieldRule::gauss_legendre(32).expect("nodes"),
+    );
+    for (wi, wo) in hard_pairs() {
+        let q = Query::far(wi, wo);
+        let (a, b) = (composed.eval(&q), chiang.eval(&q));
+        for c in 0..3 {
+            assert!(
+                (a[c] - b[c]).abs() <= 1e-12 * b[c].abs() + 1e-300,
+                "{a:?} vs {b:?} at {wi:?} {wo:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_frostbite_composition_is_the_frostbite_model() {
+    let sine = |azimuthal| {
+        Some(LobeFactors {
+            longitudinal: Longitudinal::SineGaussian,
+            azimuthal,
+        })
+    };
+    let published = Attenuation::Offset(Constants::Published);
+    let composition = Composition {
+        r: sine(Azimuthal::KarisReflection),
+        tt: sine(Azimuthal::Separable {
+            distribution: Distribution::FrostbiteTable,
+            attenuation: published,
+        }),
+        trt: sine(Azimuthal::Separable {
+            distribution: Distribution::FrostbiteScaled,
+            attenuation: published,
+        }),
+        residual: false,
+        far_field_nodes: 1,
+    };
+    let params = brown();
+    let composed = ComposedHair::new(&params, composition).expect("valid");
+    let frostbite = Frostbite::<f64>::new(&params);
+    for (wi, wo) in hard_pairs() {
+        let q = Query::far(wi, wo);
+        let (a, b) = (composed.eval(&q), frostbite.eval(&q));
+        for c in 0..3 {
+            assert!(
+                (a[c] - b[c]).abs() <= 1e-12 * b[c].abs() + 1e-300,
+                "{a:?} vs {b:?} at {wi:?} {wo:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn every_option_is_finite_and_non_negative_on_the_hard_cases() {
+    let hairs = [
+        brown(),
+        hair(0.01, 0.01, 0.0, 1.0001, 0.0),
+        hair(1.0, 1.0, -10.0, 3.0, 10.0),
+        hair(0.05, 0.9, 10.0, 1.3, 1e3),
+    ];
+    for params in &hairs {
+        for composition in every_single_lobe_composition(4) {
+            let model = ComposedHair::new(params, composition).expect("valid");
+            let single = model.instantiate::<f32>();
+            for (wi, wo) in hard_pairs() {
+                let s = model.eval(&Query::far(wi, wo));
+                let q32 = Query::far(V3::c(wi.x, wi.y, wi.z), V3::c(wo.x, wo.y, wo.z));
+                let s32: [f32; 3] = single.eval(&q32);
+                let ok = s.iter().all(|v| v.is_finite() && *v >= 0.0)
+                    && s32.iter().all(|v| v.is_finite() && *v >= 0.0);
+                assert!(
+                    ok,
+                    "{} at {wi:?} {wo:?}: {s:?} {s32:?}",
+                    composition.describe()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_traced_shader_computes_the_f32_code_bit_for_bit() {
+    let params = brown();
+    for composition in every_single_lobe_composition(4) {
+        let model = ComposedHair::new(&params, composition).expect("valid");
+        let graph = trace_eval_with(&model, UniformsIn::Constant);
+        let single = model.instantiate::<f32>();
+        for (wi, wo) in hard_pairs() {
+            let w = [wi.x, wi.y, wi.z, wo.x, wo.y, wo.z].map(|x| x as f32);
+            let traced = graph.eval_f32(&w);
+            let q = Query::far(V3::new(w[0], w[1], w[2]), V3::new(w[3], w[4], w[5]));
+            let direct: [f32; 3] = single.eval(&q);
+            let same = (0..3).all(|c| traced[c].to_bits() == direct[c].to_bits());
+            assert!(
+                same,
+                "{}: traced {traced:?}, f32 {direct:?}",
+                composition.describe()
+            );
+        }
+    }
+}
+
+#[test]
+fn factors_that_do_not_fit_their_lobe_are_errors() {
+    let f = |longitudinal, azimuthal| {
+        Some(LobeFactors {
+            longitudinal,
+            azimuthal,
+        })
+    };
+    let empty = Composition {
+        r: None,
+        tt: None,
+        trt: None,
+        residual: false,
+        far_field_nodes: 8,
+    };
+    let separable = Azimuthal::Separable {
+        distribution: Distribution::Karis(Constants::Published),
+        attenuation: Attenuation::Offset(Constants::Published),
+    };
+    let params = brown();
+    let bad = [
+        empty.with_lobe(ComposedLobe::R, f(Longitudinal::Deon, separable)),
+        empty.with_lobe(
+            ComposedLobe::Tt,
+            f(Longitudinal::Deon, Azimuthal::KarisReflection),
+        ),
+        empty.with_lobe(
+            ComposedLobe::Trt,
+            f(
+                Longitudinal::Deon,
+                Azimuthal::Separable {
+                    distribution: Distribution::FrostbiteTable,
+                    attenuation: Attenuation::Offset(Constants::Refit),
+                },
+            ),
+        ),
+    ];
+    for composition in bad {
+        let error = ComposedHair::new(&params, composition).expect_err("rejected");
+        assert!(
+            matches!(error, CompositionError::Azimuthal { .. }),
+            "{error}"
+        );
+        assert!(
+            error
+                .to_string()
+                .contains("R takes FarField or KarisReflection"),
+            "{error}"
+        );
+    }
+    for nodes in [0, 513] {
+        let composition = Composition {
+            residual: true,
+            far_field_nodes: nodes,
+            ..empty
+        };
+        let error = ComposedHair::new(&params, composition).expect_err("rejected");
+        assert_eq!(error, CompositionError::Nodes(nodes));
+    }
+    // Without a far field the node count is not read.
+    let karis_r = empty.with_lobe(
+        ComposedLobe::R,
+        f(Longitudinal::Deon, Azimuthal::KarisReflection),
+    );
+    assert!(ComposedHair::new(
+        &params,
+        Composition {
+            far_field_nodes: 0,
+            ..karis_r
+        }
+    )
+    .is_ok());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn every_option_is_finite_and_non_negative_over_the_domain(
+        beta_m in 0.01f64..=1.0,
+        beta_n in 0.01f64..=1.0,
+        alpha_deg in -20f64..20.0,
+        eta in 1.0001f64..3.0,
+        sigma_a in 0f64..50.0,
+        theta_i in -FRAC_PI_2..FRAC_PI_2,
+        theta_o in -FRAC_PI_2..FRAC_PI_2,
+        phi in -PI..PI,
+        option in 0usize..85,
+    ) {
+        let compositions = every_single_lobe_composition(4);
+        let composition = compositions[option % compositions.len()];
+        let model = ComposedHair::new(&hair(beta_m, beta_n, alpha_deg, eta, sigma_a), composition)
+            .expect("valid");
+        let s = model.eval(&Query::far(direction(theta_i, phi), direction(theta_o, 0.0)));
+        prop_assert!(s.iter().all(|v| v.is_finite() && *v >= 0.0), "{}: {:?}", composition.describe(), s);
+    }
+}
