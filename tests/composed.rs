@@ -11,7 +11,7 @@ use hairmath::bcsdf::{
 use hairmath::geometry::{local_direction, V3};
 use hairmath::models::{
     Attenuation, Azimuthal, ComposedHair, ComposedLobe, Composition, CompositionError, Constants,
-    Distribution, Frostbite, LobeFactors, Longitudinal,
+    Distribution, Frostbite, LobeFactors, LobeTableSize, Longitudinal,
 };
 use hairmath::params::{HairParams, HairValues};
 use proptest::prelude::*;
@@ -70,7 +70,11 @@ fn hard_pairs() -> Vec<(V3<f64>, V3<f64>)> {
 /// Every factor set each lobe takes.
 fn every_lobe_option(lobe: ComposedLobe) -> Vec<LobeFactors> {
     let constants = [Constants::Published, Constants::Refit];
-    let mut azimuthals = vec![Azimuthal::FarField, Azimuthal::KarisReflection];
+    let mut azimuthals = vec![
+        Azimuthal::FarField,
+        Azimuthal::KarisReflection,
+        Azimuthal::Table { absorption: None },
+    ];
     let mut distributions: Vec<Distribution> = constants.map(Distribution::Karis).to_vec();
     distributions.extend([Distribution::FrostbiteTable, Distribution::FrostbiteScaled]);
     for distribution in distributions {
@@ -81,6 +85,13 @@ fn every_lobe_option(lobe: ComposedLobe) -> Vec<LobeFactors> {
                     attenuation,
                 });
             }
+        }
+    }
+    for c in constants {
+        for attenuation in [Attenuation::Offset(c), Attenuation::Exponential(c)] {
+            azimuthals.push(Azimuthal::Table {
+                absorption: Some(attenuation),
+            });
         }
     }
     let ms = [
@@ -108,6 +119,7 @@ fn every_single_lobe_composition(nodes: usize) -> Vec<Composition> {
         trt: None,
         residual: false,
         far_field_nodes: nodes,
+        table: LobeTableSize::OFFERED[0],
     };
     let mut out = vec![Composition {
         residual: true,
@@ -123,9 +135,9 @@ fn every_single_lobe_composition(nodes: usize) -> Vec<Composition> {
 
 #[test]
 fn every_lobe_takes_the_options_the_planner_offers() {
-    assert_eq!(every_lobe_option(ComposedLobe::R).len(), 6);
-    assert_eq!(every_lobe_option(ComposedLobe::Tt).len(), 39);
-    assert_eq!(every_lobe_option(ComposedLobe::Trt).len(), 39);
+    assert_eq!(every_lobe_option(ComposedLobe::R).len(), 9);
+    assert_eq!(every_lobe_option(ComposedLobe::Tt).len(), 51);
+    assert_eq!(every_lobe_option(ComposedLobe::Trt).len(), 51);
 }
 
 #[test]
@@ -140,6 +152,7 @@ fn the_far_field_composition_is_chiangs_far_field() {
         trt: deon_far,
         residual: true,
         far_field_nodes: 32,
+        table: LobeTableSize::OFFERED[0],
     };
     let params = brown();
     let composed = ComposedHair::new(&params, composition).expect("valid");
@@ -180,6 +193,7 @@ fn the_frostbite_composition_is_the_frostbite_model() {
         }),
         residual: false,
         far_field_nodes: 1,
+        table: LobeTableSize::OFFERED[0],
     };
     let params = brown();
     let composed = ComposedHair::new(&params, composition).expect("valid");
@@ -260,6 +274,7 @@ fn factors_that_do_not_fit_their_lobe_are_errors() {
         trt: None,
         residual: false,
         far_field_nodes: 8,
+        table: LobeTableSize::OFFERED[0],
     };
     let separable = Azimuthal::Separable {
         distribution: Distribution::Karis(Constants::Published),
@@ -333,7 +348,7 @@ proptest! {
         theta_i in -FRAC_PI_2..FRAC_PI_2,
         theta_o in -FRAC_PI_2..FRAC_PI_2,
         phi in -PI..PI,
-        option in 0usize..85,
+        option in 0usize..112,
     ) {
         let compositions = every_single_lobe_composition(4);
         let composition = compositions[option % compositions.len()];
@@ -341,5 +356,50 @@ proptest! {
             .expect("valid");
         let s = model.eval(&Query::far(direction(theta_i, phi), direction(theta_o, 0.0)));
         prop_assert!(s.iter().all(|v| v.is_finite() && *v >= 0.0), "{}: {:?}", composition.describe(), s);
+    }
+}
+
+#[test]
+fn the_lobe_table_interpolates_the_far_field_within_its_measured_error() {
+    use hairmath::models::far_field_lobe_table;
+    use hairmath::params::RefractiveIndex;
+    let eta = RefractiveIndex::new(1.55).expect("eta");
+    // Bounds about 1.4 times the worst error of any lobe measured (0.142, 0.060, 0.019).
+    for (size, bound) in [
+        (LobeTableSize::OFFERED[0], 0.2),
+        (LobeTableSize::OFFERED[1], 0.085),
+        (LobeTableSize::OFFERED[2], 0.028),
+    ] {
+        let table = far_field_lobe_table(size, eta).expect("baked");
+        let mut worst = [0.0_f64; 3];
+        for beta_n in [0.3, 0.45, 0.6] {
+            let params = hair(0.3, beta_n, 0.0, 1.55, 0.0);
+            let rule = FarFieldRule::gauss_legendre(256).expect("nodes");
+            let far = ChiangFarField::<f64>::with_rule(&params, &rule);
+            let mut peak = [0.0_f64; 3];
+            let mut error = [0.0_f64; 3];
+            for i in 0..97 {
+                for j in 0..23 {
+                    let (phi, theta_o) = (
+                        PI * (i as f64 + 0.37) / 97.0,
+                        FRAC_PI_2 * (j as f64 + 0.41) / 23.0,
+                    );
+                    let exact = far.azimuthal(theta_o.sin(), theta_o.cos(), phi).0;
+                    let looked: [f64; 3] = table.sample([phi, theta_o, beta_n]);
+                    for p in 0..3 {
+                        peak[p] = peak[p].max(exact[p][0]);
+                        error[p] = error[p].max((looked[p] - exact[p][0]).abs());
+                    }
+                }
+            }
+            for p in 0..3 {
+                worst[p] = worst[p].max(error[p] / peak[p]);
+            }
+        }
+        eprintln!(
+            "{size:?}: worst |lookup - far field| / peak: R {:.3e}, TT {:.3e}, TRT {:.3e}",
+            worst[0], worst[1], worst[2]
+        );
+        assert!(worst.iter().all(|w| *w <= bound), "{worst:?}");
     }
 }

@@ -9,7 +9,7 @@ use hairmath::diagnostics::{DirectionPairs, OpCounts};
 use hairmath::geometry::V3;
 use hairmath::models::{
     Attenuation, Azimuthal, ComposedHair, Composition, Constants, Distribution, LobeFactors,
-    Longitudinal,
+    LobeTableSize, Longitudinal,
 };
 use hairmath::plan::{
     plan, scene_points, shader_argument, trace_composition, worst_error, Plan, PlanError,
@@ -99,6 +99,7 @@ fn reduced_space() -> Vec<Composition> {
         f(Longitudinal::Deon, Azimuthal::KarisReflection),
         f(Longitudinal::SineGaussian, Azimuthal::KarisReflection),
         f(Longitudinal::Deon, Azimuthal::FarField),
+        f(Longitudinal::Deon, Azimuthal::Table { absorption: None }),
     ];
     let tt = [
         None,
@@ -140,6 +141,7 @@ fn reduced_space() -> Vec<Composition> {
                         trt,
                         residual,
                         far_field_nodes: 8,
+                        table: LobeTableSize::OFFERED[0],
                     });
                 }
             }

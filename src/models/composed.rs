@@ -31,6 +31,14 @@
 //!   with the trimmed logistic and the chord attenuation), by `n` Gauss-Legendre nodes in h
 //!   ([`crate::bcsdf::FarFieldRule`]), one loop shared by every lobe that chooses it and by
 //!   the residual (its `N_3 = A_3 / (2 pi)` with d'Eon's M of TRT's variance, untilted).
+//! - [`Azimuthal::Table`]: Chiang's far field without absorption from a table over
+//!   `(|phi|, |theta_o|, beta_n)` (beta_n in [0.1, 1]; [`far_field_lobe_table`], baked with
+//!   the reference integrator at the hair's eta, one fetch of R, TT and TRT together),
+//!   times an absorption for TT and TRT (the transmittance `T(h)^p` at Frostbite's offset,
+//!   or `e^(-k sigma_a)`). Lookup error, worst over |phi|, |theta_o| and beta_n in {0.3,
+//!   0.45, 0.6} relative to each lobe's peak (R, TT, TRT; `tests/composed.rs`): 0.14, 0.031,
+//!   0.10 at 16 x 8 x 10 texels; 0.044, 0.020, 0.060 at 32 x 16 x 10; 0.0079, 0.0042, 0.019
+//!   at 64 x 32 x 10.
 //! - [`Azimuthal::KarisReflection`] (R only): Karis' `N_R = cos(phi/2)/4 F(eta,
 //!   sqrt((1 + wi.wo)/2))`, Schlick's Fresnel at the mirror reflection's angle of incidence.
 //! - [`Azimuthal::Separable`] (TT and TRT): a distribution `D(phi)` times an attenuation `A`:
@@ -70,17 +78,20 @@ use super::karis::{
     REFIT_D_TT_TABLE,
 };
 use super::unreal::{chiang_r_width_in_sines, r_azimuthal, Published, Refitted};
+use crate::absorption::{Absorption, PathLength};
+use crate::azimuthal::Refraction;
 use crate::bcsdf::{
     eta_in, roughness_in, tilt_in, Bcsdf, ChiangFarField, ChiangUniforms, FarFieldRule, Input,
-    InputValues, InputsIn, Model, OffsetNodes, Offsets, OffsetsIn, Outgoing, PairAngles, Query,
-    VaryingInputs, HAIR_INPUTS,
+    InputsIn, Model, OffsetNodes, Offsets, OffsetsIn, Outgoing, PairAngles, Query, VaryingInputs,
+    HAIR_INPUTS,
 };
-use crate::error::ParamError;
 use crate::geometry::local_fibre_angles;
 use crate::lobe::gaussian_lobe;
-use crate::lut::SharedTable;
-use crate::params::HairParams;
+use crate::lut::{bake, FarFieldN, SharedTable, Table, TableMeta};
+use crate::params::{AzimuthalRoughness, HairParams, RefractiveIndex};
 use crate::real::{safe_sqrt, NamedConstant, Real};
+use std::collections::HashMap;
+use std::sync::{Mutex, OnceLock};
 
 /// The lobes of a composed model, in the order of [`Bcsdf::eval_lobes`].
 pub const COMPOSED_LOBES: [&str; 4] = ["R", "TT", "TRT", "residual"];
@@ -151,6 +162,15 @@ pub enum Azimuthal {
     FarField,
     /// Karis' `cos(phi/2)/4` times Schlick's Fresnel (R only).
     KarisReflection,
+    /// Chiang's far field without absorption from a baked table over `(|phi|, |theta_o|,
+    /// beta_n)` at the composition's [`LobeTableSize`], times an absorption (`None` for R,
+    /// which has none; TT and TRT take one).
+    Table {
+        /// How absorption scales the unabsorbed `N_p`: [`Attenuation::Offset`] as the
+        /// transmittance `T(h)^p` of the path at that offset, [`Attenuation::Exponential`] as
+        /// `e^(-k sigma_a)`.
+        absorption: Option<Attenuation>,
+    },
     /// A distribution times an attenuation (TT and TRT).
     Separable {
         /// `D(phi)`.
@@ -202,6 +222,9 @@ impl ComposedLobe {
     pub fn accepts(self, azimuthal: Azimuthal) -> bool {
         match (self, azimuthal) {
             (_, Azimuthal::FarField) => true,
+            (lobe, Azimuthal::Table { absorption }) => {
+                absorption.is_none() == (lobe == ComposedLobe::R)
+            }
             (ComposedLobe::R, a) => a == Azimuthal::KarisReflection,
             (_, Azimuthal::KarisReflection) => false,
             (lobe, Azimuthal::Separable { distribution, .. }) => match distribution {
@@ -227,6 +250,42 @@ pub struct Composition {
     /// Gauss-Legendre nodes in h of the far field, where a lobe or the residual uses it (in
     /// 1..=512; ignored otherwise).
     pub far_field_nodes: usize,
+    /// The texels of the far-field lobe table, where a lobe reads it (each at least 2;
+    /// ignored otherwise).
+    pub table: LobeTableSize,
+}
+
+/// The texels of the far-field lobe table ([`far_field_lobe_table`]) per axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct LobeTableSize {
+    /// Over |phi| in [0, pi].
+    pub phi: usize,
+    /// Over |theta_o| in [0, pi/2].
+    pub theta_o: usize,
+    /// Over beta_n in [0.1, 1].
+    pub beta_n: usize,
+}
+
+impl LobeTableSize {
+    /// The sizes the planner offers: 16 x 8, 32 x 16 and 64 x 32, each with 10 beta_n
+    /// texels (one per 0.1).
+    pub const OFFERED: [LobeTableSize; 3] = [
+        LobeTableSize {
+            phi: 16,
+            theta_o: 8,
+            beta_n: 10,
+        },
+        LobeTableSize {
+            phi: 32,
+            theta_o: 16,
+            beta_n: 10,
+        },
+        LobeTableSize {
+            phi: 64,
+            theta_o: 32,
+            beta_n: 10,
+        },
+    ];
 }
 
 /// A composition whose factors do not fit together.
@@ -245,6 +304,12 @@ pub enum CompositionError {
         /// The factor.
         azimuthal: Azimuthal,
     },
+    /// A lobe table with fewer than two texels on an axis, or more than 4096.
+    #[error("table = {0:?} is not allowed: each axis of the lobe table takes 2 to 4096 texels")]
+    Table(LobeTableSize),
+    /// The lobe table could not be baked (the message says why).
+    #[error("the far-field lobe table could not be baked: {0}")]
+    Baking(String),
     /// A far field with a node count outside 1..=512.
     #[error("far_field_nodes = {0} is not allowed: the far field's node count must be in 1..=512")]
     Nodes(usize),
@@ -296,7 +361,19 @@ impl Composition {
         if self.uses_far_field() {
             parts.push(format!("far field: {} nodes", self.far_field_nodes));
         }
+        if self.uses_table() {
+            let t = self.table;
+            parts.push(format!("table: {} x {} x {}", t.phi, t.theta_o, t.beta_n));
+        }
         parts.join("; ")
+    }
+
+    /// Whether a lobe reads the far-field lobe table.
+    pub fn uses_table(&self) -> bool {
+        ComposedLobe::ALL.iter().any(|&l| {
+            self.lobe(l)
+                .is_some_and(|f| matches!(f.azimuthal, Azimuthal::Table { .. }))
+        })
     }
 
     /// Checks that every lobe's factors fit it and the node count, where used, is valid.
@@ -315,6 +392,13 @@ impl Composition {
         let nodes_ok = (1..=crate::bcsdf::MAX_FAR_FIELD_NODES).contains(&self.far_field_nodes);
         if self.uses_far_field() && !nodes_ok {
             return Err(CompositionError::Nodes(self.far_field_nodes));
+        }
+        let t = self.table;
+        let table_ok = [t.phi, t.theta_o, t.beta_n]
+            .iter()
+            .all(|n| (2..=4096).contains(n));
+        if self.uses_table() && !table_ok {
+            return Err(CompositionError::Table(t));
         }
         Ok(())
     }
@@ -352,12 +436,23 @@ impl Attenuation {
     }
 }
 
+impl Attenuation {
+    /// The attenuation in words (`offset (refit)`, `exp(-k sigma_a) (published)`).
+    pub fn describe(self) -> String {
+        match self {
+            Attenuation::Offset(c) => format!("offset ({})", c.name()),
+            Attenuation::Exponential(c) => format!("exp(-k sigma_a) ({})", c.name()),
+        }
+    }
+}
+
 impl Azimuthal {
     /// `far_field`, `karis_reflection` or `separable`.
     pub fn name(self) -> &'static str {
         match self {
             Azimuthal::FarField => "far_field",
             Azimuthal::KarisReflection => "karis_reflection",
+            Azimuthal::Table { .. } => "table",
             Azimuthal::Separable { .. } => "separable",
         }
     }
@@ -374,6 +469,10 @@ impl LobeFactors {
         let n = match self.azimuthal {
             Azimuthal::FarField => "far field".to_string(),
             Azimuthal::KarisReflection => "Karis cos(phi/2)/4 x Schlick".to_string(),
+            Azimuthal::Table { absorption: None } => "far-field table".to_string(),
+            Azimuthal::Table {
+                absorption: Some(a),
+            } => format!("far-field table x absorption {}", a.describe()),
             Azimuthal::Separable {
                 distribution,
                 attenuation,
@@ -383,11 +482,7 @@ impl LobeFactors {
                     Distribution::FrostbiteTable => "Frostbite table".to_string(),
                     Distribution::FrostbiteScaled => "Frostbite s_r".to_string(),
                 };
-                let a = match attenuation {
-                    Attenuation::Offset(c) => format!("offset ({})", c.name()),
-                    Attenuation::Exponential(c) => format!("exp(-k sigma_a) ({})", c.name()),
-                };
-                format!("{d} x A {a}")
+                format!("{d} x A {}", attenuation.describe())
             }
         };
         format!("M {m}, N {n}")
@@ -569,6 +664,75 @@ impl<R: Real> ComposedUniforms<R> {
     }
 }
 
+/// The far-field lobe table's beta_n axis.
+const TABLE_BETA_N: (f64, f64) = (0.1, 1.0);
+/// The relative tolerance of the reference integrals the lobe table samples.
+const TABLE_REL_TOL: f64 = 1e-8;
+
+/// Chiang et al. 2016's far-field `N_p` without absorption (sigma_a = 0, so one value per
+/// lobe) of R, TT and TRT for index `eta`, over `|phi|` in [0, pi], `|theta_o|` in [0, pi/2]
+/// and beta_n in [0.1, 1] at `size` texels: the channels `R_r`, `TT_r`, `TRT_r` of
+/// [`crate::lut::FarFieldN`] (reference integrals to relative tolerance 1e-8). Baked once per
+/// size and index and shared.
+///
+/// # Errors
+/// [`CompositionError::Table`] for sizes outside 2..=4096.
+pub fn far_field_lobe_table(
+    size: LobeTableSize,
+    eta: RefractiveIndex,
+) -> Result<SharedTable<3, 3>, CompositionError> {
+    type Cache = Mutex<HashMap<(LobeTableSize, u64), SharedTable<3, 3>>>;
+    static TABLES: OnceLock<Cache> = OnceLock::new();
+    let key = (size, eta.get().to_bits());
+    let cache = TABLES.get_or_init(Cache::default);
+    if let Some(table) = cache.lock().unwrap_or_else(|p| p.into_inner()).get(&key) {
+        return Ok(table.clone());
+    }
+    let table = bake_lobe_table(size, eta)?;
+    let mut tables = cache.lock().unwrap_or_else(|p| p.into_inner());
+    Ok(tables.entry(key).or_insert(table).clone())
+}
+
+/// [`far_field_lobe_table`], baked.
+fn bake_lobe_table(
+    size: LobeTableSize,
+    eta: RefractiveIndex,
+) -> Result<SharedTable<3, 3>, CompositionError> {
+    if ![size.phi, size.theta_o, size.beta_n]
+        .iter()
+        .all(|n| (2..=4096).contains(n))
+    {
+        return Err(CompositionError::Table(size));
+    }
+    let baking = |e: &dyn std::fmt::Display| CompositionError::Baking(e.to_string());
+    let beta_n = |b| AzimuthalRoughness::new(b).map_err(|e| baking(&e));
+    let clear = Absorption::new([0.0; 3]).map_err(|e| baking(&e))?;
+    let (lo, hi) = (beta_n(TABLE_BETA_N.0)?, beta_n(TABLE_BETA_N.1)?);
+    let baker = FarFieldN::new(eta, clear, lo, hi, TABLE_REL_TOL).map_err(|e| baking(&e))?;
+    let full = bake(&baker, &[size.phi, size.theta_o, size.beta_n]).map_err(|e| baking(&e))?;
+    // The R, TT and TRT channels of red (at sigma_a = 0 the channels are equal).
+    let lobes = [0, 3, 6];
+    let stride = full.channels().len();
+    let data = full
+        .data()
+        .chunks(stride)
+        .flat_map(|texel| lobes.map(|c| texel[c]))
+        .collect();
+    let channels = lobes.map(|c| full.channels()[c].clone()).to_vec();
+    let meta = TableMeta {
+        kind: "far-field-lobes".to_string(),
+        description: "Chiang 2016 far-field N_p without absorption (sigma_a = 0) for p = R, TT, \
+                      TRT at |phi| = axis 0, |theta_o| = axis 1, beta_n = axis 2"
+            .to_string(),
+        parameters: full.meta().parameters.clone(),
+        png_scale: Vec::new(),
+    };
+    Table::new(full.axes().to_vec(), channels, data)
+        .and_then(|t| t.with_meta(meta))
+        .and_then(SharedTable::new)
+        .map_err(|e| baking(&e))
+}
+
 /// The uniforms from the values of [`HAIR_INPUTS`] in precision `R`, with Chiang's clamps.
 fn composed_uniforms_in<R: Real>(inputs: &InputsIn<R>) -> ComposedUniforms<R> {
     let beta_n = roughness_in(inputs.number("beta_n"));
@@ -590,10 +754,14 @@ pub struct ComposedHair<R> {
     nodes: OffsetNodes<R>,
     /// Frostbite's TT Gaussians over (theta_o, beta_n).
     tt_table: SharedTable<2, 2>,
+    /// The far-field lobe table, where a lobe reads it.
+    lobe_table: Option<SharedTable<3, 3>>,
 }
 
 impl ComposedHair<f64> {
-    /// The composed model of the hair `hair`.
+    /// The composed model of the hair `hair`. A lobe table is baked (once per size and index,
+    /// [`far_field_lobe_table`]) at the hair's eta: in shader code whose eta varies the table
+    /// stays that of this eta.
     ///
     /// # Errors
     /// [`CompositionError`] if the composition's factors do not fit together.
@@ -605,21 +773,21 @@ impl ComposedHair<f64> {
             hair.eta.get(),
             hair.sigma_a.rgb(),
         );
-        Self::with_composed_uniforms(uniforms, composition)
-    }
-
-    /// The model of `composition` reading `uniforms`, with its node rule.
-    fn with_composed_uniforms(
-        uniforms: ComposedUniforms<f64>,
-        composition: Composition,
-    ) -> Result<Self, CompositionError> {
         composition.check()?;
-        Ok(Self::checked(uniforms, composition))
+        let lobe_table = match composition.uses_table() {
+            true => Some(far_field_lobe_table(composition.table, hair.eta)?),
+            false => None,
+        };
+        Ok(Self::checked(uniforms, composition, lobe_table))
     }
 
     /// The model of the checked `composition` reading `uniforms`, with its node rule (one
     /// node, never read, when nothing reads the far field).
-    fn checked(uniforms: ComposedUniforms<f64>, composition: Composition) -> Self {
+    fn checked(
+        uniforms: ComposedUniforms<f64>,
+        composition: Composition,
+        lobe_table: Option<SharedTable<3, 3>>,
+    ) -> Self {
         let nodes = match composition.uses_far_field() {
             true => composition.far_field_nodes,
             false => 1,
@@ -631,24 +799,8 @@ impl ComposedHair<f64> {
             composition,
             nodes: OffsetNodes::new(&rule),
             tt_table: frostbite_tt_table(),
+            lobe_table,
         }
-    }
-
-    /// The model of the same composition for the hair `values` (the values of
-    /// [`HAIR_INPUTS`]).
-    ///
-    /// # Errors
-    /// [`ParamError`] for invalid values.
-    pub fn with_inputs(&self, values: &InputValues) -> Result<Self, ParamError> {
-        let hair = HairParams::from_inputs(values)?;
-        let uniforms = ComposedUniforms::derive(
-            hair.beta_m.get(),
-            hair.beta_n.get(),
-            hair.alpha.get(),
-            hair.eta.get(),
-            hair.sigma_a.rgb(),
-        );
-        Ok(Self::checked(uniforms, self.composition))
     }
 }
 
@@ -811,16 +963,62 @@ impl<R: Real> ComposedHair<R> {
         }
     }
 
-    /// `lobe`'s `N A` per channel; `far` holds the far field's `N_p A_p`.
+    /// The factor absorption scales a transmitted lobe's unabsorbed `N_p` by, per channel:
+    /// the transmittance `T(h)^p` of the path at Frostbite's offset ([`Attenuation::Offset`];
+    /// `A_p = (1 - f)^2 f^(p-1) T^p` at one offset, so its ratio to the unabsorbed one is
+    /// `T^p`) or Gerard's `e^(-k sigma_a)`.
+    fn absorbed(
+        &self,
+        path: Transmitted,
+        absorption: Attenuation,
+        a: &ComposedAngles<R>,
+    ) -> [R; 3] {
+        let u = &self.uniforms;
+        match absorption {
+            Attenuation::Offset(c) => {
+                let h = offset_of(path, c).get::<R>();
+                let (sin_o, cos_o) = (a.pair.out.sin_o, a.pair.out.cos_o);
+                let through =
+                    Refraction::new(sin_o, cos_o, u.eta, u.inv_eta).path(h, PathLength::Chord);
+                u.sigma_a.map(|s| {
+                    let t = through.transmittance(s);
+                    match path {
+                        Transmitted::Tt => t,
+                        Transmitted::Trt => t * t,
+                    }
+                })
+            }
+            Attenuation::Exponential(c) => {
+                let k = R::c(exponent_of(path, c));
+                u.sigma_a.map(|s| gerard_attenuation(k, s))
+            }
+        }
+    }
+
+    /// `lobe`'s `N A` per channel; `far` holds the far field's `N_p A_p`, `table` the lobe
+    /// table's unabsorbed `N_p`.
     fn azimuthal(
         &self,
         lobe: ComposedLobe,
         n: Azimuthal,
         a: &ComposedAngles<R>,
         far: &[[R; 3]; 4],
+        table: &[R; 3],
     ) -> [R; 3] {
         match (n, lobe) {
             (Azimuthal::FarField, _) => far[lobe.p()],
+            (Azimuthal::Table { absorption }, _) => {
+                let n = table[lobe.p()];
+                match (absorption, lobe) {
+                    (Some(absorption), ComposedLobe::Tt) => {
+                        self.absorbed(Transmitted::Tt, absorption, a).map(|t| n * t)
+                    }
+                    (Some(absorption), _) => self
+                        .absorbed(Transmitted::Trt, absorption, a)
+                        .map(|t| n * t),
+                    (None, _) => [n; 3],
+                }
+            }
             (Azimuthal::KarisReflection, _) => {
                 let cos_half_phi = (R::c(0.5) * a.phi).cos().max(R::c(0.0));
                 [r_azimuthal(cos_half_phi, a.v_dot_l, self.uniforms.eta); 3]
@@ -859,11 +1057,15 @@ impl<R: Real> ComposedHair<R> {
             }
             false => zero,
         };
+        let table = match &self.lobe_table {
+            Some(t) => t.sample([a.phi.abs(), a.theta_o.abs(), self.uniforms.beta_n]),
+            None => [R::c(0.0); 3],
+        };
         let mut lobes = zero;
         for lobe in ComposedLobe::ALL {
             if let Some(f) = self.composition.lobe(lobe) {
                 let m = self.longitudinal(lobe, f.longitudinal, &a, &deon);
-                let n = self.azimuthal(lobe, f.azimuthal, &a, &far);
+                let n = self.azimuthal(lobe, f.azimuthal, &a, &far, &table);
                 lobes[lobe.p()] = n.map(|x| (m * x).label(LOBE_LABELS[lobe.p()]));
             }
         }
@@ -920,6 +1122,7 @@ impl Model for ComposedHair<f64> {
             composition: self.composition,
             nodes: self.nodes.cast(),
             tt_table: self.tt_table.clone(),
+            lobe_table: self.lobe_table.clone(),
         }
     }
 }

@@ -103,6 +103,7 @@ pub use frostbite_hair::{
 // Models composed per lobe and per factor (what scene plans choose from).
 mod composed;
 pub use composed::{
-    Attenuation, Azimuthal, ComposedHair, ComposedLobe, ComposedUniforms, Composition,
-    CompositionError, Constants, Distribution, LobeFactors, Longitudinal, COMPOSED_LOBES,
+    far_field_lobe_table, Attenuation, Azimuthal, ComposedHair, ComposedLobe, ComposedUniforms,
+    Composition, CompositionError, Constants, Distribution, LobeFactors, LobeTableSize,
+    Longitudinal, COMPOSED_LOBES,
 };

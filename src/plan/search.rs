@@ -37,7 +37,7 @@ use crate::diagnostics::{DirectionPairs, OpCounts, ReferenceSamples};
 use crate::error::ParamError;
 use crate::models::{
     Attenuation, Azimuthal, ComposedHair, ComposedLobe, Composition, CompositionError, Constants,
-    Distribution, LobeFactors, Longitudinal,
+    Distribution, LobeFactors, LobeTableSize, Longitudinal,
 };
 use crate::params::{HairParams, HairValues};
 use crate::quadrature::kronecker;
@@ -251,18 +251,26 @@ pub fn scene_points(hair: &SceneHair, interior: usize) -> Result<Vec<ScenePoint>
 struct LobeOption {
     factors: Option<LobeFactors>,
     nodes: Option<usize>,
+    table: Option<LobeTableSize>,
+}
+
+/// An option that needs neither the far field's loop nor the lobe table.
+const fn plain(factors: Option<LobeFactors>) -> LobeOption {
+    LobeOption {
+        factors,
+        nodes: None,
+        table: None,
+    }
 }
 
 /// The lobes a composition chooses options for, in the order of [`Composition`]'s fields:
 /// R, TT, TRT and the residual (index 3).
 const SLOTS: usize = 4;
 
-/// Every option of each slot (R, TT, TRT, residual).
-fn slot_options(far_field_nodes: &[usize]) -> [Vec<LobeOption>; SLOTS] {
-    let dropped = LobeOption {
-        factors: None,
-        nodes: None,
-    };
+/// Every option of each slot (R, TT, TRT, residual); the lobe tables only `with_tables`
+/// (they are baked at one index of refraction).
+fn slot_options(far_field_nodes: &[usize], with_tables: bool) -> [Vec<LobeOption>; SLOTS] {
+    let dropped = plain(None);
     let ms = [
         Longitudinal::Deon,
         Longitudinal::SineGaussian,
@@ -289,34 +297,40 @@ fn slot_options(far_field_nodes: &[usize]) -> [Vec<LobeOption>; SLOTS] {
         }
         let mut options = vec![dropped];
         for &longitudinal in &ms {
-            for &azimuthal in azimuthals.iter().filter(|&&a| lobe.accepts(a)) {
-                let factors = Some(LobeFactors {
+            let factors = |azimuthal| {
+                Some(LobeFactors {
                     longitudinal,
                     azimuthal,
-                });
-                options.push(LobeOption {
-                    factors,
-                    nodes: None,
-                });
+                })
+            };
+            for &azimuthal in azimuthals.iter().filter(|&&a| lobe.accepts(a)) {
+                options.push(plain(factors(azimuthal)));
             }
             for &n in far_field_nodes {
-                let azimuthal = Azimuthal::FarField;
-                let factors = Some(LobeFactors {
-                    longitudinal,
-                    azimuthal,
-                });
                 options.push(LobeOption {
-                    factors,
                     nodes: Some(n),
+                    ..plain(factors(Azimuthal::FarField))
                 });
+            }
+            let absorptions: Vec<Option<Attenuation>> = match lobe {
+                ComposedLobe::R => vec![None],
+                _ => attenuations.iter().map(|&a| Some(a)).collect(),
+            };
+            for size in LobeTableSize::OFFERED.iter().filter(|_| with_tables) {
+                for &absorption in &absorptions {
+                    options.push(LobeOption {
+                        table: Some(*size),
+                        ..plain(factors(Azimuthal::Table { absorption }))
+                    });
+                }
             }
         }
         options
     };
     let residual = core::iter::once(dropped)
         .chain(far_field_nodes.iter().map(|&n| LobeOption {
-            factors: None,
             nodes: Some(n),
+            ..plain(None)
         }))
         .collect();
     [
@@ -330,21 +344,20 @@ fn slot_options(far_field_nodes: &[usize]) -> [Vec<LobeOption>; SLOTS] {
 /// The composition of one option per slot (the residual kept when its option has nodes).
 fn compose(options: [&LobeOption; SLOTS]) -> Composition {
     let nodes = options.iter().find_map(|o| o.nodes).unwrap_or(1);
+    let table = options.iter().find_map(|o| o.table);
     Composition {
         r: options[0].factors,
         tt: options[1].factors,
         trt: options[2].factors,
         residual: options[3].nodes.is_some(),
         far_field_nodes: nodes,
+        table: table.unwrap_or(LobeTableSize::OFFERED[0]),
     }
 }
 
 /// The composition of `option` in `slot` alone (every other slot dropped).
 fn alone(slot: usize, option: &LobeOption) -> Composition {
-    let dropped = LobeOption {
-        factors: None,
-        nodes: None,
-    };
+    let dropped = plain(None);
     let mut options = [&dropped; SLOTS];
     options[slot] = option;
     compose(options)
@@ -562,7 +575,10 @@ pub fn plan(
         .map(shader_argument)
         .collect();
     let pairs = DirectionPairs::kronecker(settings.pairs);
-    let options = slot_options(&settings.far_field_nodes);
+    let options = slot_options(
+        &settings.far_field_nodes,
+        scene.hair.get(HairKey::Eta).is_fixed(),
+    );
     let done = std::sync::atomic::AtomicUsize::new(0);
     let grams: Vec<Gram> = points
         .par_iter()
@@ -732,26 +748,33 @@ fn combinations_within(
     (within, count, best)
 }
 
+/// The far-field node count and the lobe-table size a partial choice has committed to.
+type Shared = (Option<usize>, Option<LobeTableSize>);
+
+/// `shared` with `option`'s needs added, or `None` if they conflict with it.
+fn joined(shared: Shared, option: &LobeOption) -> Option<Shared> {
+    fn join<T: PartialEq + Copy>(a: Option<T>, b: Option<T>) -> Option<Option<T>> {
+        match (a, b) {
+            (Some(x), Some(y)) if x != y => None,
+            _ => Some(a.or(b)),
+        }
+    }
+    Some((join(shared.0, option.nodes)?, join(shared.1, option.table)?))
+}
+
 /// Calls `f` with every choice (an option index per slot) whose far-field options share one
-/// node count.
+/// node count and whose table options one table size.
 fn for_each_choice(options: &[Vec<LobeOption>; SLOTS], mut f: impl FnMut([usize; SLOTS])) {
-    let agree = |a: Option<usize>, b: Option<usize>| match (a, b) {
-        (Some(x), Some(y)) => x == y,
-        _ => true,
-    };
     for (i, oi) in options[0].iter().enumerate() {
+        let Some(si) = joined((None, None), oi) else {
+            continue;
+        };
         for (j, oj) in options[1].iter().enumerate() {
-            if !agree(oi.nodes, oj.nodes) {
-                continue;
-            }
-            let n_ij = oi.nodes.or(oj.nodes);
+            let Some(sj) = joined(si, oj) else { continue };
             for (k, ok) in options[2].iter().enumerate() {
-                if !agree(n_ij, ok.nodes) {
-                    continue;
-                }
-                let n_ijk = n_ij.or(ok.nodes);
+                let Some(sk) = joined(sj, ok) else { continue };
                 for (l, ol) in options[3].iter().enumerate() {
-                    if agree(n_ijk, ol.nodes) {
+                    if joined(sk, ol).is_some() {
                         f([i, j, k, l]);
                     }
                 }

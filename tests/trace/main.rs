@@ -617,6 +617,8 @@ fn sh_direction_rows() -> Vec<Vec<f32>> {
 
 /// The classic real-time models: Kajiya-Kay, TressFX, Scheuermann.
 mod classic;
+/// The composed model (`hairmath::models::ComposedHair`).
+mod composed;
 /// The Frostbite models (`hairmath::models::{Frostbite, FrostbiteRefit}`).
 mod frostbite;
 /// The closed forms of the real-time models (`hairmath::models`).
@@ -1222,6 +1224,7 @@ fn coverage_matches_the_source() {
         classic::COVERED,
         unreal::COVERED,
         frostbite::COVERED,
+        composed::COVERED,
         varying::COVERED,
     ]
     .concat();

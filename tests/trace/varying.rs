@@ -236,6 +236,16 @@ traced_tests! {
         check_approximation::<Frostbite<f64>>("frostbite");
         check_approximation::<FrostbiteRefit<f64>>("frostbite-refit");
     }
+    varying_composed ["ComposedHair::uniforms_in"] {
+        for absorption in absorptions() {
+            let values = hair_values(absorption);
+            let hair = HairParams::from_inputs(&values).unwrap();
+            for composition in super::composed::compositions() {
+                let model = hairmath::models::ComposedHair::new(&hair, composition).unwrap();
+                check_varying("composed", &model, &values);
+            }
+        }
+    }
     varying_tables ["NguyenDonnelly::uniforms_in", "Gerard::uniforms_in"] {
         // Nguyen-Donnelly varies nothing: its shader is the baked one.
         check_approximation::<NguyenDonnelly<f64>>("nguyen-donnelly");
