@@ -271,3 +271,34 @@ fn an_unreachable_budget_and_unsupported_scenes_are_errors() {
         Err(PlanError::Unsupported(_))
     ));
 }
+
+/// The goal, a benchmark rather than a test (`cargo test --release --test plan --
+/// --ignored --nocapture` prints it): for the README's example scenes, the plan whose budget
+/// is just below each published model's E, and whether it costs no more than that model.
+#[test]
+#[ignore = "prints the README's table of plans against the published models (about 4 minutes)"]
+fn plans_against_the_published_models() {
+    use hairmath::plan::compare_published;
+    let settings = PlanSettings::default();
+    println!("| hair | model | model E | model cost | plan E | plan cost | dominated |");
+    println!("| --- | --- | ---: | ---: | ---: | ---: | --- |");
+    for (name, eumelanin) in [("blonde", 0.3), ("brown", 3.0), ("black", 8.0)] {
+        let text = |budget: f64| {
+            format!(
+                "budget = {budget}\n[hair]\neumelanin = {eumelanin}\nbeta_m = 0.3\nbeta_n = 0.3\n"
+            )
+        };
+        let loose = planned(&scene(&text(10.0)), &settings);
+        for published in compare_published(&loose, &settings).expect("measured") {
+            let budget = published.error * (1.0 - 1e-3);
+            let row = match plan(&scene(&text(budget)), &settings, &|_, _| {}) {
+                Ok(p) => format!("{:.4} | {} | {}", p.error, p.cost, p.cost <= published.cost),
+                Err(e) => format!("- | - | no ({e})"),
+            };
+            println!(
+                "| {name} | {} | {:.4} | {} | {row} |",
+                published.model, published.error, published.cost
+            );
+        }
+    }
+}

@@ -7,7 +7,9 @@ use clap::builder::{PossibleValue, PossibleValuesParser};
 use clap::Args;
 use hairmath::diagnostics::OpCounts;
 use hairmath::models::{Azimuthal, LobeFactors};
-use hairmath::plan::{plan, Plan, PlanSettings, PlannedLobe, Scene};
+use hairmath::plan::{
+    compare_published, plan, Plan, PlanSettings, PlannedLobe, PublishedComparison, Scene,
+};
 use hairmath::shader::{graph_shader, table_files, CommittedFile, Language, ModelShader};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
@@ -60,12 +62,15 @@ pub fn run(args: &PlanArgs) -> Result<(), CliError> {
             .progress_chars("=> "),
     );
     bar.set_message("compositions");
-    let result = plan(&scene, &PlanSettings::default(), &|done, total| {
+    let settings = PlanSettings::default();
+    let result = plan(&scene, &settings, &|done, total| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
     });
     bar.finish_and_clear();
     let plan = result.map_err(|e| CliError::Plan(e.to_string()))?;
+    let published =
+        compare_published(&plan, &settings).map_err(|e| CliError::Plan(e.to_string()))?;
     let language = Language::from_name(&args.lang).expect("clap checks the name");
     let shader = graph_shader(
         "plan",
@@ -78,7 +83,7 @@ pub fn run(args: &PlanArgs) -> Result<(), CliError> {
         plan.graph.clone(),
     )?;
     let file = format!("hair.{}", extension(language));
-    let data = plan_json(&scene, &plan, &file, &args.lang);
+    let data = plan_json(&scene, &plan, &published, &file, &args.lang);
     if let Some(dir) = &args.out {
         write_outputs(dir, &shader, language, &file, &data)?;
     }
@@ -89,7 +94,7 @@ pub fn run(args: &PlanArgs) -> Result<(), CliError> {
             "{}",
             serde_json::to_string_pretty(&data).expect("JSON")
         )?,
-        false => write!(stdout, "{}", plan_text(&scene, &plan))?,
+        false => write!(stdout, "{}", plan_text(&scene, &plan, &published))?,
     }
     Ok(stdout.flush()?)
 }
@@ -159,7 +164,13 @@ fn ops_json(o: &OpCounts) -> Value {
 }
 
 /// The plan as JSON: `choices`, `error`, `cost`, `shader` and the measurement's context.
-fn plan_json(scene: &Scene, plan: &Plan, file: &str, lang: &str) -> Value {
+fn plan_json(
+    scene: &Scene,
+    plan: &Plan,
+    published: &[PublishedComparison],
+    file: &str,
+    lang: &str,
+) -> Value {
     let nodes = plan.composition.far_field_nodes;
     let point: serde_json::Map<String, Value> = plan
         .worst_point
@@ -186,14 +197,18 @@ fn plan_json(scene: &Scene, plan: &Plan, file: &str, lang: &str) -> Value {
             "function": "hair_bcsdf",
             "arguments": arguments,
         },
+        "published": published.iter().map(|p| json!({
+            "model": p.model, "error": p.error, "cost": p.cost, "ops": ops_json(&p.ops),
+            "dominated": p.dominated,
+        })).collect::<Vec<_>>(),
         "points": plan.points.len(),
         "combinations": plan.combinations,
         "feasible": plan.feasible,
     })
 }
 
-/// The plan as text: a line per lobe, then the totals.
-fn plan_text(scene: &Scene, plan: &Plan) -> String {
+/// The plan as text: a line per lobe, the totals, the published models beside it.
+fn plan_text(scene: &Scene, plan: &Plan, published: &[PublishedComparison]) -> String {
     let mut s = format!(
         "plan for budget E <= {} over {} hairs ({} combinations, {} within the budget)\n",
         scene.budget,
@@ -237,5 +252,14 @@ fn plan_text(scene: &Scene, plan: &Plan) -> String {
             .map(|a| format!(", {a}"))
             .collect::<String>(),
     );
+    s += "\npublished models at their mapped inputs, on the same hairs and pairs:\n";
+    s += "| model | E | cost | the plan costs no more, with lower E |\n| --- | ---: | ---: | --- |\n";
+    for p in published {
+        let verdict = if p.dominated { "yes" } else { "no" };
+        s += &format!(
+            "| {} | {:.4} | {} | {verdict} |\n",
+            p.model, p.error, p.cost
+        );
+    }
     s
 }
