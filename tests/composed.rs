@@ -98,6 +98,7 @@ fn every_lobe_option(lobe: ComposedLobe) -> Vec<LobeFactors> {
         Longitudinal::Deon,
         Longitudinal::SineGaussian,
         Longitudinal::ThetaHGaussian,
+        Longitudinal::HenyeyGreenstein,
     ];
     let mut out = Vec::new();
     for longitudinal in ms {
@@ -135,9 +136,9 @@ fn every_single_lobe_composition(nodes: usize) -> Vec<Composition> {
 
 #[test]
 fn every_lobe_takes_the_options_the_planner_offers() {
-    assert_eq!(every_lobe_option(ComposedLobe::R).len(), 9);
-    assert_eq!(every_lobe_option(ComposedLobe::Tt).len(), 51);
-    assert_eq!(every_lobe_option(ComposedLobe::Trt).len(), 51);
+    assert_eq!(every_lobe_option(ComposedLobe::R).len(), 12);
+    assert_eq!(every_lobe_option(ComposedLobe::Tt).len(), 68);
+    assert_eq!(every_lobe_option(ComposedLobe::Trt).len(), 68);
 }
 
 #[test]
@@ -348,7 +349,7 @@ proptest! {
         theta_i in -FRAC_PI_2..FRAC_PI_2,
         theta_o in -FRAC_PI_2..FRAC_PI_2,
         phi in -PI..PI,
-        option in 0usize..112,
+        option in 0usize..149,
     ) {
         let compositions = every_single_lobe_composition(4);
         let composition = compositions[option % compositions.len()];

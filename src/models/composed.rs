@@ -27,6 +27,11 @@
 //!   `beta_TRT = 2 beta_R`, converted to a density in `sin theta_i` as Marschner's `S` is:
 //!   `M = g cos theta_i / (2 cos^2 theta_d)` (theta_h moves at half the rate of theta_i; his
 //!   `1/cos^2 theta_d` floored at 1e-12, where the conversion diverges).
+//! - [`Longitudinal::HenyeyGreenstein`]: Gerard's lobe (his eq. 5 and 6) in `theta_h - alpha_p`
+//!   normalised on the circle ([`crate::lobe::HenyeyGreenstein`], its factor by
+//!   [`crate::lobe::hg_circle_factor`] so that it is computed in shader code too), with
+//!   `g = g(beta_p)` of the normalised lobe ([`crate::models::hg_g_normalised`], beta_p
+//!   Marschner's widths as above, clamped to [1, 45] degrees) and Marschner's conversion.
 //! - [`Azimuthal::FarField`]: Chiang's `N_p = 1/2 int A_p(h) D(phi - Phi(p, h)) dh` (eq. 8
 //!   with the trimmed logistic and the chord attenuation), by `n` Gauss-Legendre nodes in h
 //!   ([`crate::bcsdf::FarFieldRule`]), one loop shared by every lobe that chooses it and by
@@ -71,7 +76,7 @@
 use super::constants::{GERARD_ABSORPTION_K_TRT, GERARD_ABSORPTION_K_TT};
 use super::frostbite::{offset_attenuation, tt_gaussian, Transmitted};
 use super::frostbite_hair::{d_trt_frostbite, frostbite_tt_table, trt_scale_of, FrostbiteVariant};
-use super::gerard::{gerard_attenuation, GERARD_K_TRT, GERARD_K_TT};
+use super::gerard::{gerard_attenuation, hg_g_normalised, GERARD_K_TRT, GERARD_K_TT};
 use super::gerard_direct::GERARD_REFIT_ENTRY;
 use super::karis::{
     d_karis_of_cos, ExpCosCoefficients, KARIS_D_TRT_TABLE, KARIS_D_TT_TABLE, REFIT_D_TRT_TABLE,
@@ -86,7 +91,7 @@ use crate::bcsdf::{
     HAIR_INPUTS,
 };
 use crate::geometry::local_fibre_angles;
-use crate::lobe::gaussian_lobe;
+use crate::lobe::{gaussian_lobe, hg_circle_factor};
 use crate::lut::{bake, FarFieldN, SharedTable, Table, TableMeta};
 use crate::params::{AzimuthalRoughness, HairParams, RefractiveIndex};
 use crate::real::{safe_sqrt, NamedConstant, Real};
@@ -132,6 +137,8 @@ pub enum Longitudinal {
     SineGaussian,
     /// Marschner's Gaussian in theta_h with his cosine conversion.
     ThetaHGaussian,
+    /// Gerard's Henyey-Greenstein lobe in theta_h, normalised, with Marschner's conversion.
+    HenyeyGreenstein,
 }
 
 /// A transmitted lobe's distribution in phi (module documentation).
@@ -411,6 +418,7 @@ impl Longitudinal {
             Longitudinal::Deon => "deon",
             Longitudinal::SineGaussian => "sine_gaussian",
             Longitudinal::ThetaHGaussian => "theta_h_gaussian",
+            Longitudinal::HenyeyGreenstein => "henyey_greenstein",
         }
     }
 }
@@ -465,6 +473,7 @@ impl LobeFactors {
             Longitudinal::Deon => "d'Eon",
             Longitudinal::SineGaussian => "sine Gaussian",
             Longitudinal::ThetaHGaussian => "theta_h Gaussian",
+            Longitudinal::HenyeyGreenstein => "Henyey-Greenstein",
         };
         let n = match self.azimuthal {
             Azimuthal::FarField => "far field".to_string(),
@@ -561,6 +570,18 @@ crate::uniform_block! {
         pub theta_h_shift_tt: R,
         /// -3 alpha / 2.
         pub theta_h_shift_trt: R,
+        /// g of R's Henyey-Greenstein lobe.
+        pub hg_g_r: R,
+        /// Of TT's.
+        pub hg_g_tt: R,
+        /// Of TRT's.
+        pub hg_g_trt: R,
+        /// The factor normalising R's lobe ([`crate::lobe::hg_circle_factor`]).
+        pub hg_factor_r: R,
+        /// TT's.
+        pub hg_factor_tt: R,
+        /// TRT's.
+        pub hg_factor_trt: R,
         /// beta_n, the Frostbite TT table's second coordinate.
         pub beta_n: R,
         /// Frostbite's `s_r` ([`crate::models::frostbite_trt_scale`]).
@@ -577,6 +598,7 @@ impl<R: Real> ComposedUniforms<R> {
         let width = chiang_r_width_in_sines(beta_m).max(R::c(MIN_WIDTH));
         let theta_h_width = R::c(0.5) * safe_sqrt(c.variance_r);
         let (half, two) = (R::c(0.5), R::c(2.0));
+        let hg_g = [half * theta_h_width, theta_h_width, two * theta_h_width].map(hg_g_normalised);
         ComposedUniforms {
             variance_r: c.variance_r,
             variance_tt: c.variance_tt,
@@ -612,6 +634,12 @@ impl<R: Real> ComposedUniforms<R> {
             theta_h_shift_r: alpha,
             theta_h_shift_tt: -half * alpha,
             theta_h_shift_trt: R::c(-1.5) * alpha,
+            hg_g_r: hg_g[1],
+            hg_g_tt: hg_g[0],
+            hg_g_trt: hg_g[2],
+            hg_factor_r: hg_circle_factor(hg_g[1]),
+            hg_factor_tt: hg_circle_factor(hg_g[0]),
+            hg_factor_trt: hg_circle_factor(hg_g[2]),
             beta_n,
             trt_scale: trt_scale_of(beta_n),
         }
@@ -651,6 +679,15 @@ impl<R: Real> ComposedUniforms<R> {
             ComposedLobe::R => (self.sine_width_r, self.sine_shift_r),
             ComposedLobe::Tt => (self.sine_width_tt, self.sine_shift_tt),
             ComposedLobe::Trt => (self.sine_width_trt, self.sine_shift_trt),
+        }
+    }
+
+    /// `(g, factor)` of `lobe`'s Henyey-Greenstein lobe.
+    fn henyey_greenstein(&self, lobe: ComposedLobe) -> (R, R) {
+        match lobe {
+            ComposedLobe::R => (self.hg_g_r, self.hg_factor_r),
+            ComposedLobe::Tt => (self.hg_g_tt, self.hg_factor_tt),
+            ComposedLobe::Trt => (self.hg_g_trt, self.hg_factor_trt),
         }
     }
 
@@ -834,6 +871,20 @@ struct ComposedAngles<R> {
 }
 
 impl<R: Real> ComposedAngles<R> {
+    /// theta_h = (theta_i + theta_o) / 2.
+    fn theta_h(&self) -> R {
+        (R::c(0.5) * (self.theta_i + self.theta_o)).label("theta_h")
+    }
+
+    /// Marschner's conversion of a lobe in theta_h to a density in `sin theta_i`,
+    /// `cos theta_i / (2 cos^2 theta_d)` (module documentation; `cos^2 theta_d` floored).
+    fn marschner_conversion(&self) -> R {
+        let cos_d = (R::c(0.5) * (self.theta_o - self.theta_i))
+            .cos()
+            .label("cos_theta_d");
+        R::c(0.5) * self.pair.cos_i / (cos_d * cos_d).max(R::c(MIN_COS2_THETA_D))
+    }
+
     fn of(query: &Query<R>) -> Self {
         let a = local_fibre_angles(query.wi, query.wo);
         let pair = PairAngles {
@@ -911,13 +962,13 @@ impl<R: Real> ComposedHair<R> {
             }
             Longitudinal::ThetaHGaussian => {
                 let (width, shift) = u.theta_h_gaussian(lobe);
-                let theta_h = (R::c(0.5) * (a.theta_i + a.theta_o)).label("theta_h");
-                let cos_d = (R::c(0.5) * (a.theta_o - a.theta_i))
-                    .cos()
-                    .label("cos_theta_d");
-                let conversion =
-                    R::c(0.5) * a.pair.cos_i / (cos_d * cos_d).max(R::c(MIN_COS2_THETA_D));
-                gaussian_lobe(width, theta_h - shift) * conversion
+                gaussian_lobe(width, a.theta_h() - shift) * a.marschner_conversion()
+            }
+            Longitudinal::HenyeyGreenstein => {
+                let (_, shift) = u.theta_h_gaussian(lobe);
+                let (g, factor) = u.henyey_greenstein(lobe);
+                let d = R::c(1.0) + g * g - R::c(2.0) * g * (a.theta_h() - shift).cos();
+                factor / (d * d.sqrt()) * a.marschner_conversion()
             }
         }
     }

@@ -275,6 +275,7 @@ fn slot_options(far_field_nodes: &[usize], with_tables: bool) -> [Vec<LobeOption
         Longitudinal::Deon,
         Longitudinal::SineGaussian,
         Longitudinal::ThetaHGaussian,
+        Longitudinal::HenyeyGreenstein,
     ];
     let constants = [Constants::Published, Constants::Refit];
     let attenuations: Vec<Attenuation> = constants

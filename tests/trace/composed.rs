@@ -85,7 +85,7 @@ pub fn compositions() -> Vec<Composition> {
             table,
         },
         Composition {
-            r: None,
+            r: f(Longitudinal::HenyeyGreenstein, Azimuthal::KarisReflection),
             tt: f(
                 Longitudinal::SineGaussian,
                 separable(Distribution::Karis(refit), Attenuation::Offset(refit)),
@@ -96,6 +96,19 @@ pub fn compositions() -> Vec<Composition> {
                     Distribution::Karis(published),
                     Attenuation::Exponential(published),
                 ),
+            ),
+            residual: false,
+            far_field_nodes: 1,
+            table,
+        },
+        Composition {
+            r: None,
+            tt: None,
+            trt: f(
+                Longitudinal::HenyeyGreenstein,
+                Azimuthal::Table {
+                    absorption: Some(Attenuation::Offset(published)),
+                },
             ),
             residual: false,
             far_field_nodes: 1,

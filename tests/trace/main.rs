@@ -31,8 +31,8 @@ use hairmath::geometry::{
     local_fibre_angles, local_sin_cos_theta, sin_cos_theta, FibreAngles, V3,
 };
 use hairmath::lobe::{
-    deon_lobe, deon_lobe_sample_cos_theta, gaussian_lobe, hg_gerard_printed, DeonLobe,
-    HenyeyGreenstein,
+    deon_lobe, deon_lobe_sample_cos_theta, gaussian_lobe, hg_circle_factor, hg_gerard_printed,
+    DeonLobe, HenyeyGreenstein,
 };
 use hairmath::lobe::{i0, i0e_split, log_i0, log_i0e};
 use hairmath::lut::axis_cell;
@@ -800,6 +800,11 @@ traced_tests! {
     lobe_hg_gerard_printed ["hg_gerard_printed"] {
         let inputs = scalars(&[HG_G, SIN]);
         case!("hg_gerard_printed", inputs, |x| vec![hg_gerard_printed(x[0], x[1])]);
+    }
+    lobe_hg_circle_factor ["hg_circle_factor"] {
+        // g over (-1, 1) with its ends, where |g| is clamped below 1.
+        let g = arg(-1.0, 1.0, &[-1.0, 0.0, 0.752, 0.999_999, 1.0]);
+        case!("hg_circle_factor", scalars(&[g]), |x| vec![hg_circle_factor(x[0])]);
     }
     lobe_henyey_greenstein ["HenyeyGreenstein::eval"] {
         // g is a per-lobe constant folded into the shader: one trace per g.
