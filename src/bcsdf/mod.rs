@@ -27,7 +27,7 @@ pub use chiang::{
     logistic_scale, longitudinal_variance, AtOffset, AzimuthalFactors, ChiangHair, ChiangUniforms,
     Offsets, OffsetsIn, Outgoing, CHIANG_LOBES,
 };
-pub(crate) use chiang::{variance_of, PairAngles};
+pub(crate) use chiang::{variance_of, PairAngles, HAIR_VARYING};
 pub use far_field::{
     ChiangFarField, FarField, FarFieldReference, FarFieldRule, OffsetNodes, ReferenceFarField,
     DEFAULT_FAR_FIELD_NODES, FAR_FIELD_ERROR_BOUNDS, MAX_FAR_FIELD_NODES, REFERENCE_NO_SHADER_FORM,

@@ -88,7 +88,7 @@ use crate::azimuthal::Refraction;
 use crate::bcsdf::{
     eta_in, roughness_in, tilt_in, Bcsdf, ChiangFarField, ChiangUniforms, FarFieldRule, Input,
     InputsIn, Model, OffsetNodes, Offsets, OffsetsIn, Outgoing, PairAngles, Query, VaryingInputs,
-    HAIR_INPUTS,
+    HAIR_INPUTS, HAIR_VARYING,
 };
 use crate::geometry::local_fibre_angles;
 use crate::lobe::{gaussian_lobe, hg_circle_factor};
@@ -1178,22 +1178,10 @@ impl Model for ComposedHair<f64> {
     }
 }
 
-/// Every input of [`HAIR_INPUTS`], the absorption in each form.
-const COMPOSED_VARYING: [&str; 8] = [
-    "beta_m",
-    "beta_n",
-    "alpha",
-    "eta",
-    "sigma_a",
-    "color",
-    "eumelanin",
-    "pheomelanin",
-];
-
 impl VaryingInputs for ComposedHair<f64> {
     const NAME: &'static str = "composed";
     const INPUTS: &'static [Input] = &HAIR_INPUTS;
-    const VARYING: &'static [&'static str] = &COMPOSED_VARYING;
+    const VARYING: &'static [&'static str] = &HAIR_VARYING;
     const BAKED: &'static [(&'static str, &'static str)] = &[];
 
     fn uniforms_in<R: Real>(inputs: &InputsIn<R>) -> ComposedUniforms<R> {

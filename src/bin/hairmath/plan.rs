@@ -2,8 +2,9 @@
 //! budget ([`hairmath::plan::plan`]), printed, as JSON, and with `--out DIR` its shader, tables
 //! and `plan.json`. This file only formats what the library computes.
 
+use crate::shader::languages;
 use crate::CliError;
-use clap::builder::{PossibleValue, PossibleValuesParser};
+use clap::builder::PossibleValuesParser;
 use clap::Args;
 use hairmath::diagnostics::OpCounts;
 use hairmath::models::{Azimuthal, LobeFactors};
@@ -16,14 +17,6 @@ use serde_json::{json, Value};
 use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
-
-/// The `--lang` values ([`Language::ALL`]).
-fn languages() -> Vec<PossibleValue> {
-    Language::ALL
-        .iter()
-        .map(|(_, name, help)| PossibleValue::new(*name).help(*help))
-        .collect()
-}
 
 /// Arguments of `hairmath plan`.
 #[derive(Args, Debug)]

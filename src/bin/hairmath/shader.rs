@@ -12,8 +12,8 @@ use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
-/// The `--lang` values ([`Language::ALL`]).
-fn languages() -> Vec<PossibleValue> {
+/// The `--lang` values ([`Language::ALL`]), for `shader` and `plan`.
+pub fn languages() -> Vec<PossibleValue> {
     Language::ALL
         .iter()
         .map(|(_, name, help)| PossibleValue::new(*name).help(*help))
