@@ -7,6 +7,7 @@ use hairmath::diagnostics::{
     INTEGRATOR_SIGMA_A, PEAK_FLOOR, REFERENCE_TOL, REFINED_TOL, REPORT_ALPHA_DEG, REPORT_BETA,
     REPORT_ETA, SHARP_BETA,
 };
+use hairmath::plan::EXAMPLE_SCENES;
 mod common;
 
 use common::{hairmath, num, same};
@@ -80,10 +81,86 @@ fn assert_timing(value: &Value) {
     assert!(t.is_finite() && t > 0.0, "{value}");
 }
 
+/// `--plots DIR` wrote a front and a lobe plot per example scene, each an SVG document.
+fn assert_plots(dir: &std::path::Path) {
+    for (scene, _) in EXAMPLE_SCENES {
+        for kind in ["front", "lobes"] {
+            let path = dir.join(format!("{kind}-{scene}.svg"));
+            let svg = std::fs::read_to_string(&path)
+                .unwrap_or_else(|e| panic!("{} not written: {e}", path.display()));
+            assert!(svg.trim_start().starts_with("<svg"), "{}", path.display());
+            assert!(svg.contains(scene), "{} has no title", path.display());
+        }
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// The approximations are the library's catalogues of the example scenes.
+fn assert_approximations(json: &Value) {
+    let scenes = json.as_array().expect("a list of scenes");
+    assert_eq!(scenes.len(), EXAMPLE_SCENES.len());
+    for ((name, _), scene) in EXAMPLE_SCENES.iter().zip(scenes) {
+        assert_keys(
+            scene,
+            &[
+                "scene",
+                "budget",
+                "combinations",
+                "plan",
+                "published",
+                "options",
+                "front",
+            ],
+        );
+        assert_eq!(scene["scene"], *name);
+        assert_keys(&scene["plan"], &["composition", "error", "cost"]);
+        assert!(num(&scene["plan"]["error"]) <= num(&scene["budget"]));
+        let front = scene["front"].as_array().unwrap();
+        assert!(front.len() >= 3, "{name}: front {front:?}");
+        for pair in front.windows(2) {
+            assert!(num(&pair[0]["cost"]) < num(&pair[1]["cost"]));
+            assert!(num(&pair[0]["error"]) > num(&pair[1]["error"]));
+        }
+        let published = scene["published"].as_array().unwrap();
+        assert!(published.len() >= 6, "{name}");
+        for p in published {
+            assert_keys(p, &["model", "error", "cost", "dominated"]);
+        }
+        let options = scene["options"].as_array().unwrap();
+        assert!(options.len() >= 8, "{name}");
+        for o in options {
+            assert_keys(
+                o,
+                &[
+                    "lobe",
+                    "option",
+                    "kept",
+                    "far_field_nodes",
+                    "table",
+                    "error",
+                    "cost",
+                ],
+            );
+            if !o["table"].is_null() {
+                assert_keys(&o["table"], &["phi", "theta_o", "beta_n"]);
+            }
+        }
+    }
+}
+
 #[test]
 fn report_quick_json_has_the_documented_keys_and_the_library_values() {
-    let text = hairmath(&["report", "--quick", "--json"]);
+    let plots = std::env::temp_dir().join(format!("hairmath-report-plots-{}", std::process::id()));
+    let text = hairmath(&[
+        "report",
+        "--quick",
+        "--json",
+        "--plots",
+        plots.to_str().unwrap(),
+    ]);
     let json: Value = serde_json::from_str(&text).expect("the output is JSON");
+    assert_plots(&plots);
+    assert_approximations(&json["approximations"]);
     let lib = library();
     let s = &lib.settings;
     assert_keys(
@@ -97,6 +174,7 @@ fn report_quick_json_has_the_documented_keys_and_the_library_values() {
             "integrator",
             "fitted_constants",
             "models",
+            "approximations",
         ],
     );
     assert_eq!(json["detail"], "quick");
@@ -270,6 +348,10 @@ fn report_quick_markdown_prints_the_library_values() {
         "| beta_n | ref us | ref refinement | N = 8 | N = 16 | N = 32 | N = 64 | N = 128 |",
         "| ns per fast N_p | | | ",
         "## Fitted constants (`hairmath fit`, eta = 1.55)",
+        "## Speed against error (`hairmath plan`'s choices)",
+        "| kind | approximation | E blonde | cost blonde | E brown | cost brown | E black | cost black |",
+        "### black hair: the Pareto front (",
+        "| E | cost | composition |",
     ] {
         assert!(out.contains(needle), "{needle:?} not in:\n{out}");
     }

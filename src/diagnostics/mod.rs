@@ -14,6 +14,8 @@
 //! - **Far-field integrator** ([`integrator_table`]): the error of
 //!   [`ChiangFarField::azimuthal`]'s fixed rule against the adaptive reference
 //!   [`ChiangHair::far_field_azimuthal_reference`], relative to each lobe's peak over phi.
+//! - **Lobe curves** ([`lobe_curves`]): S against the relative azimuth at fixed
+//!   inclinations, for plots of a model beside the reference.
 //! - **Timing** ([`ns_per_eval`]): indicative wall-clock nanoseconds per call of any model, on
 //!   deterministic inputs ([`crate::quadrature::kronecker`]).
 //!
@@ -47,6 +49,7 @@
 //! [`ChiangHair::far_field_azimuthal_reference`]: crate::bcsdf::ChiangHair::far_field_azimuthal_reference
 
 mod comparison;
+mod curves;
 mod energy;
 mod furnace;
 mod integrator;
@@ -54,6 +57,7 @@ mod report;
 mod timing;
 
 pub use comparison::{DirectionPairs, EnergyReference, ModelError, OpCounts, ReferenceSamples};
+pub use curves::{lobe_curves, LobeCurve};
 pub use energy::{lobe_energies, LobeEnergies};
 pub use furnace::{albedo, viewing_direction, white_furnace, Furnace, FurnaceCase, VIEW_AZIMUTH};
 pub use integrator::{

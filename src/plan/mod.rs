@@ -1,10 +1,12 @@
 //! Scene plans: the cheapest composition of per-lobe, per-factor choices whose error against
 //! Chiang et al. 2016's far field stays within a budget over the hair a scene contains.
 
+mod catalogue;
 mod published;
 mod scene;
 mod search;
 
+pub use catalogue::*;
 pub use published::*;
 pub use scene::*;
 pub use search::*;

@@ -120,6 +120,20 @@ impl Default for PlanSettings {
     }
 }
 
+impl PlanSettings {
+    /// Fewer pairs (2^9), no interior points, far fields of 4 and 16 nodes and 16 traced
+    /// candidates: for tests and `hairmath report --quick` (the errors become rough).
+    pub fn quick() -> Self {
+        PlanSettings {
+            pairs: 1 << 9,
+            interior_points: 0,
+            far_field_nodes: vec![4, 16],
+            traced_candidates: 16,
+            ..PlanSettings::default()
+        }
+    }
+}
+
 /// A scene the planner cannot plan, or a budget no composition meets.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -248,7 +262,7 @@ pub fn scene_points(hair: &SceneHair, interior: usize) -> Result<Vec<ScenePoint>
 /// One lobe's option: its factors (or `None`, dropped) and the far-field node count it
 /// needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct LobeOption {
+pub(super) struct LobeOption {
     factors: Option<LobeFactors>,
     nodes: Option<usize>,
     table: Option<LobeTableSize>,
@@ -265,7 +279,7 @@ const fn plain(factors: Option<LobeFactors>) -> LobeOption {
 
 /// The lobes a composition chooses options for, in the order of [`Composition`]'s fields:
 /// R, TT, TRT and the residual (index 3).
-const SLOTS: usize = 4;
+pub(super) const SLOTS: usize = 4;
 
 /// Every option of each slot (R, TT, TRT, residual); the lobe tables only `with_tables`
 /// (they are baked at one index of refraction).
@@ -399,7 +413,7 @@ impl PointReference {
 }
 
 /// The inner products of the options' differences from the reference at one point.
-struct Gram {
+pub(super) struct Gram {
     /// Offsets of each slot's options in the flat option index.
     start: [usize; SLOTS],
     /// `<d_a, d_b>` for every pair of options (row-major over the flat index).
@@ -483,11 +497,38 @@ pub struct PlannedLobe {
     pub factors: Option<LobeFactors>,
     /// Whether the lobe is kept (the residual has no factors of its own).
     pub kept: bool,
+    /// The far field's node count, for an option that integrates it.
+    pub far_field_nodes: Option<usize>,
+    /// The lobe table's size, for an option that reads it.
+    pub table: Option<LobeTableSize>,
     /// The lobe's own error: `sqrt(sum (S_p - S_ref,p)^2 / sum S_ref^2)`, the worst over the
     /// scene's points (a dropped lobe's is its share of the reference).
     pub error: f64,
     /// The weighted cost of a shader of this lobe alone.
     pub cost: f64,
+}
+
+impl PlannedLobe {
+    /// The option in words: its factors with the far field's node count or the table's
+    /// size where it uses them (`M d'Eon, N far field (16 nodes)`), `far field (16 nodes)`
+    /// for the residual, or `dropped`.
+    pub fn describe(&self) -> String {
+        let mut text = match (self.factors, self.kept) {
+            (Some(factors), _) => factors.describe(),
+            (None, true) => "far field".to_string(),
+            (None, false) => return "dropped".to_string(),
+        };
+        if let Some(n) = self.far_field_nodes {
+            text.push_str(&format!(" ({n} nodes)"));
+        }
+        if let Some(t) = self.table {
+            text.push_str(&format!(
+                " ({} x {} x {} table)",
+                t.phi, t.theta_o, t.beta_n
+            ));
+        }
+        text
+    }
 }
 
 /// The planner's result.
@@ -567,69 +608,191 @@ pub fn plan(
     settings: &PlanSettings,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Plan, PlanError> {
-    check_supported(scene)?;
-    let points = scene_points(&scene.hair, settings.interior_points)?;
-    let arguments: Vec<&'static str> = scene
-        .hair
-        .non_fixed()
-        .into_iter()
-        .map(shader_argument)
-        .collect();
-    let pairs = DirectionPairs::kronecker(settings.pairs);
-    let options = slot_options(
-        &settings.far_field_nodes,
-        scene.hair.get(HairKey::Eta).is_fixed(),
-    );
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let grams: Vec<Gram> = points
-        .par_iter()
-        .map(|point| {
-            let gram = measure_point(point, &pairs, settings.reference_nodes, &options);
-            let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            progress(n, points.len());
-            gram
+    let measured = SceneMeasurement::new(scene, settings, progress)?;
+    measured.plan(scene.budget, settings)
+}
+
+/// A scene measured for planning: its hairs, every lobe option, the options' Gram matrices
+/// at each hair and their costs. [`SceneMeasurement::plan`] plans any budget from it, and
+/// [`super::catalogue`] lists every option and the Pareto front from the same measurements.
+pub(super) struct SceneMeasurement {
+    pub(super) points: Vec<ScenePoint>,
+    pub(super) pairs: DirectionPairs,
+    pub(super) arguments: Vec<&'static str>,
+    pub(super) options: [Vec<LobeOption>; SLOTS],
+    pub(super) grams: Vec<Gram>,
+    pub(super) costs: OptionCosts,
+}
+
+impl SceneMeasurement {
+    /// Measures every option at every point of `scene` (`progress` as in [`plan`]).
+    pub(super) fn new(
+        scene: &Scene,
+        settings: &PlanSettings,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Self, PlanError> {
+        check_supported(scene)?;
+        let points = scene_points(&scene.hair, settings.interior_points)?;
+        let arguments: Vec<&'static str> = scene
+            .hair
+            .non_fixed()
+            .into_iter()
+            .map(shader_argument)
+            .collect();
+        let pairs = DirectionPairs::kronecker(settings.pairs);
+        let options = slot_options(
+            &settings.far_field_nodes,
+            scene.hair.get(HairKey::Eta).is_fixed(),
+        );
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        let grams: Vec<Gram> = points
+            .par_iter()
+            .map(|point| {
+                let gram = measure_point(point, &pairs, settings.reference_nodes, &options);
+                let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                progress(n, points.len());
+                gram
+            })
+            .collect::<Result<_, _>>()?;
+        let costs = option_costs(
+            &options,
+            &points[points.len() - 1],
+            &arguments,
+            &settings.weights,
+        )?;
+        Ok(SceneMeasurement {
+            points,
+            pairs,
+            arguments,
+            options,
+            grams,
+            costs,
         })
-        .collect::<Result<_, _>>()?;
-    let centre = &points[points.len() - 1];
-    let costs = option_costs(&options, centre, &arguments, &settings.weights)?;
-    let (candidates, combinations, best) =
-        combinations_within(scene.budget, &options, &grams, &costs);
-    let feasible = candidates.len();
-    let chosen = cheapest_traced(
-        scene.budget,
-        &candidates,
-        &options,
-        centre,
-        &arguments,
-        settings,
-        |c| worst_error(c, &points, &pairs, settings.reference_nodes),
-    )?;
-    let Some((composition, graph, ops, cost, (error, worst))) = chosen else {
-        return Err(PlanError::Infeasible {
-            budget: scene.budget,
-            best_error: best.1,
-            best: compose(choice_options(&options, best.0)).describe(),
+    }
+
+    /// The point the shaders are traced at (every parameter not an argument baked at its
+    /// value): the last one measured.
+    pub(super) fn centre(&self) -> &ScenePoint {
+        &self.points[self.points.len() - 1]
+    }
+
+    /// The composition of one option index per slot.
+    pub(super) fn composition(&self, choice: [usize; SLOTS]) -> Composition {
+        compose(choice_options(&self.options, choice))
+    }
+
+    /// The worst error over the points of a choice, from the Gram matrices.
+    pub(super) fn choice_error(&self, choice: [usize; SLOTS]) -> f64 {
+        self.grams
+            .iter()
+            .map(|g| g.squared_error(choice))
+            .fold(0.0, f64::max)
+            .sqrt()
+    }
+
+    /// The additive estimate of a choice's cost.
+    pub(super) fn estimate(&self, choice: [usize; SLOTS]) -> f64 {
+        self.costs
+            .estimate(choice_options(&self.options, choice), choice)
+    }
+
+    /// Calls `f` with every choice whose options fit together.
+    pub(super) fn for_each_choice(&self, f: impl FnMut([usize; SLOTS])) {
+        for_each_choice(&self.options, f);
+    }
+
+    /// Option `index` of `slot` with its own error (the worst over the points) and cost
+    /// alone.
+    pub(super) fn planned_lobe(&self, slot: usize, index: usize) -> PlannedLobe {
+        const NAMES: [&str; SLOTS] = ["R", "TT", "TRT", "residual"];
+        let option = &self.options[slot][index];
+        let own = self
+            .grams
+            .iter()
+            .map(|g| g.get(slot, index, slot, index).max(0.0) / g.norm.max(f64::MIN_POSITIVE))
+            .fold(0.0, f64::max)
+            .sqrt();
+        PlannedLobe {
+            lobe: NAMES[slot],
+            factors: option.factors,
+            kept: option.factors.is_some() || option.nodes.is_some(),
+            far_field_nodes: option.nodes,
+            table: option.table,
+            error: own,
+            cost: self.costs.alone[slot][index],
+        }
+    }
+
+    /// The cheapest composition within `budget` (the module documentation's search).
+    pub(super) fn plan(&self, budget: f64, settings: &PlanSettings) -> Result<Plan, PlanError> {
+        let (candidates, combinations, best) = self.combinations_within(budget);
+        let feasible = candidates.len();
+        let chosen = cheapest_traced(
+            budget,
+            &candidates,
+            &self.options,
+            self.centre(),
+            &self.arguments,
+            settings,
+            |c| worst_error(c, &self.points, &self.pairs, settings.reference_nodes),
+        )?;
+        let Some((composition, graph, ops, cost, (error, worst))) = chosen else {
+            return Err(PlanError::Infeasible {
+                budget,
+                best_error: best.1,
+                best: self.composition(best.0).describe(),
+            });
+        };
+        let choice = candidates
+            .iter()
+            .find(|c| self.composition(c.choice) == composition)
+            .map(|c| c.choice)
+            .unwrap_or_else(|| unreachable!("the plan is one of the candidates"));
+        let lobes = (0..SLOTS)
+            .map(|s| self.planned_lobe(s, choice[s]))
+            .collect();
+        Ok(Plan {
+            composition,
+            error,
+            worst_point: self.points[worst].clone(),
+            cost,
+            ops,
+            lobes,
+            arguments: self.arguments.clone(),
+            graph,
+            points: self.points.clone(),
+            combinations,
+            feasible,
+        })
+    }
+
+    /// Every choice whose worst error is within `budget` (sorted by estimated cost), how
+    /// many choices were evaluated, and the most accurate one `(choice, error)`.
+    fn combinations_within(&self, budget: f64) -> (Vec<Candidate>, usize, ([usize; SLOTS], f64)) {
+        let mut within = Vec::new();
+        let mut count = 0;
+        let mut best = ([0; SLOTS], f64::INFINITY);
+        self.for_each_choice(|choice| {
+            count += 1;
+            let error = self.choice_error(choice);
+            if error < best.1 {
+                best = (choice, error);
+            }
+            if error <= budget {
+                within.push(Candidate {
+                    choice,
+                    error,
+                    estimate: self.estimate(choice),
+                });
+            }
         });
-    };
-    let choice = candidates
-        .iter()
-        .find(|c| compose(choice_options(&options, c.choice)) == composition)
-        .map(|c| c.choice)
-        .unwrap_or_else(|| unreachable!("the plan is one of the candidates"));
-    let lobes = planned_lobes(&options, choice, &grams, &costs);
-    Ok(Plan {
-        composition,
-        error,
-        worst_point: points[worst].clone(),
-        cost,
-        ops,
-        lobes,
-        arguments,
-        graph,
-        points,
-        combinations,
-        feasible,
-    })
+        within.sort_by(|a, b| {
+            a.estimate
+                .total_cmp(&b.estimate)
+                .then(a.error.total_cmp(&b.error))
+        });
+        (within, count, best)
+    }
 }
 
 /// The parts of a scene the planner supports.
@@ -660,7 +823,7 @@ fn choice_options(
 
 /// Each option's cost alone, the far field's loop excluded (`(costs per slot, loop cost per
 /// node count)`): the additive estimate's terms.
-struct OptionCosts {
+pub(super) struct OptionCosts {
     alone: [Vec<f64>; SLOTS],
     far_field_loop: Vec<(usize, f64)>,
 }
@@ -707,46 +870,6 @@ fn option_costs(
         alone: alone_costs,
         far_field_loop,
     })
-}
-
-/// Every combination of options whose far fields agree on the node count: those whose worst
-/// error over the points is within `budget` (sorted by estimated cost), how many were
-/// evaluated, and the most accurate one `(choice, error)`.
-fn combinations_within(
-    budget: f64,
-    options: &[Vec<LobeOption>; SLOTS],
-    grams: &[Gram],
-    costs: &OptionCosts,
-) -> (Vec<Candidate>, usize, ([usize; SLOTS], f64)) {
-    let mut within = Vec::new();
-    let mut count = 0;
-    let mut best = ([0; SLOTS], f64::INFINITY);
-    let budget2 = budget * budget;
-    for_each_choice(options, |choice| {
-        count += 1;
-        let worst2 = grams
-            .iter()
-            .map(|g| g.squared_error(choice))
-            .fold(0.0, f64::max);
-        let error = worst2.sqrt();
-        if error < best.1 {
-            best = (choice, error);
-        }
-        if worst2 <= budget2 {
-            let estimate = costs.estimate(choice_options(options, choice), choice);
-            within.push(Candidate {
-                choice,
-                error,
-                estimate,
-            });
-        }
-    });
-    within.sort_by(|a, b| {
-        a.estimate
-            .total_cmp(&b.estimate)
-            .then(a.error.total_cmp(&b.error))
-    });
-    (within, count, best)
 }
 
 /// The far-field node count and the lobe-table size a partial choice has committed to.
@@ -835,31 +958,4 @@ pub fn worst_error(
         }
     }
     Ok(worst)
-}
-
-/// The choice per slot with its own error (worst over the points) and cost alone.
-fn planned_lobes(
-    options: &[Vec<LobeOption>; SLOTS],
-    choice: [usize; SLOTS],
-    grams: &[Gram],
-    costs: &OptionCosts,
-) -> Vec<PlannedLobe> {
-    const NAMES: [&str; SLOTS] = ["R", "TT", "TRT", "residual"];
-    (0..SLOTS)
-        .map(|s| {
-            let option = &options[s][choice[s]];
-            let own = grams
-                .iter()
-                .map(|g| g.get(s, choice[s], s, choice[s]).max(0.0) / g.norm.max(f64::MIN_POSITIVE))
-                .fold(0.0, f64::max)
-                .sqrt();
-            PlannedLobe {
-                lobe: NAMES[s],
-                factors: option.factors,
-                kept: option.factors.is_some() || option.nodes.is_some(),
-                error: own,
-                cost: costs.alone[s][choice[s]],
-            }
-        })
-        .collect()
 }

@@ -16,12 +16,14 @@
 //! Errors in the input or the parameters are reported on stderr and end the program with exit
 //! status 2; argument errors found by clap keep clap's own status.
 
+mod approximations;
 mod eval;
 mod fit;
 mod flags;
 mod lut;
 mod models;
 mod plan;
+mod plots;
 mod report;
 mod sh;
 mod shader;

@@ -4,6 +4,7 @@
 //! its fixed-node integrator against the adaptive reference) and the fitted constants, as
 //! markdown or JSON on stdout. This file only formats: every number comes from the library.
 
+use crate::approximations;
 use crate::CliError;
 use clap::Args;
 use hairmath::bcsdf::CHIANG_LOBES;
@@ -13,6 +14,7 @@ use hairmath::diagnostics::{
     REFERENCE_TOL, REFINED_TOL, REPORT_ALPHA_DEG, REPORT_BETA, REPORT_ETA, SHARP_BETA,
 };
 use hairmath::fit::{compare_models, ComparisonSettings, ConstantFit};
+use hairmath::plan::PlanSettings;
 use serde_json::{json, Value};
 use std::io::{self, BufWriter, Write};
 
@@ -45,11 +47,22 @@ pub struct ReportArgs {
     /// - `fitted_constants`: the rows of `hairmath fit --json`.
     /// - `models`: the rows of `hairmath models --brown --json` (with --quick on fewer
     ///   direction pairs).
+    /// - `approximations`: one object per example scene (`examples/scenes/`): `scene`,
+    ///   `budget`, `combinations`, `plan` (`composition`, `error`, `cost`), `published` (per
+    ///   model: `model`, `error`, `cost`, `dominated`), `options` (every lobe option of the
+    ///   planner: `lobe`, `option`, `kept`, `far_field_nodes`, `table`, `error`, `cost`) and
+    ///   `front` (the Pareto front: `composition`, `error`, `cost`).
     ///
     /// The timings (`ns_per_call_*`, `reference_us`, `ns`) are wall-clock and vary from run
     /// to run; every other value is deterministic.
     #[arg(long, verbatim_doc_comment)]
     json: bool,
+    /// Also write SVG plots into this directory (created if missing): for each example
+    /// scene, `front-<scene>.svg` (the Pareto front, cost against error, log-log, with the
+    /// published models and the plan marked) and `lobes-<scene>.svg` (S against phi at a few
+    /// inclinations, every model against the reference).
+    #[arg(long, value_name = "DIR")]
+    plots: Option<std::path::PathBuf>,
 }
 
 /// Runs `hairmath report`.
@@ -67,6 +80,17 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
         ComparisonSettings::brown()
     };
     let rows = compare_models(&models, &|_, _| {})?;
+    let plan_settings = if args.quick {
+        PlanSettings::quick()
+    } else {
+        PlanSettings::default()
+    };
+    let catalogues = approximations::catalogues(&plan_settings)?;
+    if let Some(dir) = &args.plots {
+        for file in crate::plots::write(dir, &catalogues)? {
+            eprintln!("wrote {}", file.display());
+        }
+    }
     let mut out = BufWriter::new(io::stdout().lock());
     if args.json {
         let mut value = json(&report, &fits.records);
@@ -74,6 +98,7 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
             .iter()
             .map(|r| crate::models::row_json(r, &models))
             .collect();
+        value["approximations"] = approximations::json(&catalogues);
         let text = serde_json::to_string_pretty(&value).map_err(io::Error::other)?;
         writeln!(out, "{text}")?;
     } else {
@@ -83,6 +108,7 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
             "\n## Real-time models (`hairmath models`, brown hair, beta_m = beta_n = 0.3)\n"
         )?;
         crate::models::markdown(&mut out, &rows, &models)?;
+        approximations::markdown(&mut out, &catalogues)?;
     }
     out.flush()?;
     Ok(())
