@@ -510,12 +510,12 @@ pub struct PlannedLobe {
 
 impl PlannedLobe {
     /// The option in words: its factors with the far field's node count or the table's
-    /// size where it uses them (`M d'Eon, N far field (16 nodes)`), `far field (16 nodes)`
-    /// for the residual, or `dropped`.
+    /// size where it uses them (`M d'Eon, N far field (16 nodes)`), `far field with d'Eon's
+    /// M (16 nodes)` for the residual, or `dropped`.
     pub fn describe(&self) -> String {
         let mut text = match (self.factors, self.kept) {
             (Some(factors), _) => factors.describe(),
-            (None, true) => "far field".to_string(),
+            (None, true) => "far field with d'Eon's M".to_string(),
             (None, false) => return "dropped".to_string(),
         };
         if let Some(n) = self.far_field_nodes {

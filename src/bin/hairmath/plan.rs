@@ -211,14 +211,12 @@ fn plan_text(scene: &Scene, plan: &Plan, published: &[PublishedComparison]) -> S
     );
     s += "| lobe | factors | own error | cost alone |\n| --- | --- | ---: | ---: |\n";
     for lobe in &plan.lobes {
-        let factors = match (lobe.factors, lobe.kept) {
-            (Some(f), _) => f.describe(),
-            (None, true) => "far field with d'Eon's M".to_string(),
-            (None, false) => "dropped".to_string(),
-        };
         s += &format!(
-            "| {} | {factors} | {:.3e} | {} |\n",
-            lobe.lobe, lobe.error, lobe.cost
+            "| {} | {} | {:.3e} | {} |\n",
+            lobe.lobe,
+            lobe.describe(),
+            lobe.error,
+            lobe.cost
         );
     }
     let worst: Vec<String> = plan
