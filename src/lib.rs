@@ -21,5 +21,7 @@ pub mod registry;
 pub mod sh;
 #[cfg(feature = "shader")]
 pub mod shader;
+#[cfg(feature = "strands")]
+pub mod strands;
 
 pub use error::ParamError;
