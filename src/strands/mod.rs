@@ -7,6 +7,8 @@
 //! built, so the readers, generators and bakers never see a NaN point, a negative thickness or a
 //! point count that does not match the strands' segment counts.
 
+pub mod hair_file;
+
 use core::ops::Range;
 use glam::Vec3;
 
