@@ -7,7 +7,11 @@
 //! built, so the readers, generators and bakers never see a NaN point, a negative thickness or a
 //! point count that does not match the strands' segment counts.
 
+pub mod density;
+pub mod groom;
 pub mod hair_file;
+pub mod occluders;
+pub mod transmittance;
 
 use core::ops::Range;
 use glam::Vec3;

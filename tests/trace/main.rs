@@ -623,6 +623,8 @@ mod composed;
 mod frostbite;
 /// The closed forms of the real-time models (`hairmath::models`).
 mod models;
+/// The crossing test of the transmittance bakers (`hairmath::strands`).
+mod strands;
 /// The structure the traces keep: functions, loops, baked uniforms.
 mod structure;
 /// Table fetches ([`Real::sample_table`]) and the models that read tables.
@@ -1231,6 +1233,7 @@ fn coverage_matches_the_source() {
         frostbite::COVERED,
         composed::COVERED,
         varying::COVERED,
+        strands::COVERED,
     ]
     .concat();
     let covered: BTreeSet<String> = all.iter().map(|s| s.to_string()).collect();

@@ -10,6 +10,8 @@
 //!   beside the published values, with errors; it can write the generated constants file.
 //! - `hairmath plan` finds the cheapest composition of per-lobe factors whose error over a
 //!   scene's hair stays within a budget, and writes its shader.
+//! - `hairmath groom` writes a procedural groom as a `.hair` file, and `hairmath bake` bakes
+//!   the per-vertex SH transmittance of a `.hair` file.
 //! - `hairmath wigner3j` and `hairmath gaunt` compute Wigner 3-j symbols and Gaunt coefficients
 //!   of rows read as CSV from stdin.
 //!
@@ -27,6 +29,7 @@ mod plots;
 mod report;
 mod sh;
 mod shader;
+mod strands;
 
 use clap::{Parser, Subcommand};
 use std::fmt;
@@ -148,6 +151,20 @@ enum Command {
     /// hair_bcsdf takes the scene's non-fixed parameters after wo, in the file's order), its
     /// lookup tables and plan.json. A malformed scene file is reported with its line and key.
     Plan(plan::PlanArgs),
+    /// Grow a procedural groom (strands on a scalp, the unit sphere's cap around +Y; straight,
+    /// wavy or curly; seeded and deterministic) and write it as a `.hair` file.
+    Groom(strands::GroomArgs),
+    /// Bake the per-vertex transmittance of a `.hair` file to spherical harmonics (Gerard's
+    /// V(x, w): the product of 1 - opacity over the segments a ray from the vertex crosses,
+    /// the vertex's own strand excluded).
+    ///
+    /// Writes DIR/transmittance.f32 (little-endian f32, vertex-major, (L + 1)^2 coefficients
+    /// per vertex in the crate's SH convention, vertices in the file's order) and
+    /// DIR/transmittance.json (vertex count, lmax, SH convention, baker, opacity, timing). The
+    /// fast baker (default) crosses the strands near each vertex exactly and treats the rest
+    /// as a medium; --exact casts rays through a bounding-volume hierarchy (the reference, about
+    /// a hundred times slower). A progress bar shows on a terminal's stderr.
+    Bake(strands::BakeArgs),
 }
 
 /// Why a subcommand failed.
@@ -189,6 +206,8 @@ pub enum CliError {
     Shader(String),
     /// A scene could not be read or planned.
     Plan(String),
+    /// A `.hair` file could not be read or written, or a bake's output could not be written.
+    Strands(String),
     /// Reading or writing failed.
     Io(io::Error),
 }
@@ -224,7 +243,7 @@ impl fmt::Display for CliError {
                 )
             }
             CliError::Comparison(e) => write!(f, "{e}"),
-            CliError::Shader(e) | CliError::Plan(e) => write!(f, "{e}"),
+            CliError::Shader(e) | CliError::Plan(e) | CliError::Strands(e) => write!(f, "{e}"),
             CliError::Io(e) => write!(f, "I/O error: {e}"),
         }
     }
@@ -294,6 +313,8 @@ fn main() -> ExitCode {
         Command::Gaunt(args) => sh::run_gaunt(args),
         Command::Shader(args) => shader::run(args),
         Command::Plan(args) => plan::run(args),
+        Command::Groom(args) => strands::run_groom(args),
+        Command::Bake(args) => strands::run_bake(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
