@@ -24,11 +24,15 @@
 //! average), which keeps long steps from aliasing and their reads in cache.
 
 use super::occluders::Cylinder;
+use crate::error::ParamError;
 use glam::Vec3;
 use wide::f32x8;
 
 /// The moments at a node: `A`, then `T`'s xx, yy, zz, xy, xz, yz, and a zero, in eight lanes.
 type Moments = f32x8;
+
+/// The most cells along the longest side of an [`ExtinctionGrid`].
+pub const MAX_GRID_CELLS: usize = 256;
 
 /// `sigma_w = sqrt(A (A - w^T T w))` of the moments `m` (0 where `A <= 0`).
 fn extinction(m: Moments, w: Vec3) -> f32 {
@@ -74,13 +78,13 @@ impl StrandMoments {
     fn new(level: &Level, contributions: &[(usize, Moments)]) -> Self {
         let mut nodes = HashTable::with_capacity(contributions.len());
         let mut cells = HashTable::with_capacity(8 * contributions.len());
-        let (sy, sz) = (level.nodes[0], level.nodes[0] * level.nodes[1]);
         for &(node, m) in contributions {
             *nodes.entry(node) += m;
+            let [x, y, z] = level.layout.coordinates(node);
             for k in 0..8 {
-                let offset = (k & 1) + ((k >> 1) & 1) * sy + (k >> 2) * sz;
-                if let Some(cell) = node.checked_sub(offset) {
-                    cells.entry(cell);
+                let (dx, dy, dz) = (k & 1, (k >> 1) & 1, k >> 2);
+                if x >= dx && y >= dy && z >= dz {
+                    cells.entry(level.layout.index([x - dx, y - dy, z - dz]));
                 }
             }
         }
@@ -90,14 +94,14 @@ impl StrandMoments {
     /// The strand's moments at `p`, interpolated trilinearly on `level` (level 0 of the grid
     /// they were deposited in); one lookup when the cell of `p` has none of them.
     fn moments_at(&self, level: &Level, p: Vec3) -> Moments {
-        let Some((first, f)) = level.cell_of(p) else {
+        let Some((base, f)) = level.cell_of(p) else {
             return f32x8::ZERO;
         };
-        if self.cells.get(first).is_none() {
+        if self.cells.get(level.layout.index(base)).is_none() {
             return f32x8::ZERO;
         }
         let mut m = f32x8::ZERO;
-        for (node, weight) in level.corners(first, f) {
+        for (node, weight) in level.corners(base, f) {
             if let Some(value) = self.nodes.get(node) {
                 m += *value * weight;
             }
@@ -153,25 +157,96 @@ struct Level {
     origin: Vec3,
     /// The node spacing.
     cell: f32,
-    /// Nodes per axis.
-    nodes: [usize; 3],
+    /// Where each node's moments are stored.
+    layout: Layout,
     moments: Vec<Moments>,
 }
 
+/// The storage order of a grid's nodes: bricks of 4 x 4 x 4 nodes, x fastest within a brick
+/// and among bricks, so that the eight corners of a cell are mostly in one 2 KiB brick (one
+/// or two cache misses where a row-major layout, whose z neighbours are a slice apart, takes
+/// four).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Layout {
+    /// Nodes per axis.
+    nodes: [usize; 3],
+    /// Bricks per axis.
+    bricks: [usize; 3],
+}
+
+impl Layout {
+    fn new(nodes: [usize; 3]) -> Self {
+        Self {
+            nodes,
+            bricks: nodes.map(|n| n.div_ceil(4)),
+        }
+    }
+
+    /// The number of stored nodes (the bricks' nodes past the grid's end included).
+    fn len(&self) -> usize {
+        64 * self.bricks[0] * self.bricks[1] * self.bricks[2]
+    }
+
+    /// Where node `(x, y, z)` is stored.
+    fn index(&self, [x, y, z]: [usize; 3]) -> usize {
+        let brick = ((z >> 2) * self.bricks[1] + (y >> 2)) * self.bricks[0] + (x >> 2);
+        64 * brick + ((z & 3) << 4 | (y & 3) << 2 | (x & 3))
+    }
+
+    /// The node stored at `index` (the inverse of [`Layout::index`]; past the grid's end for
+    /// the padding of the last bricks).
+    fn coordinates(&self, index: usize) -> [usize; 3] {
+        let (brick, within) = (index / 64, index % 64);
+        let [bx, by] = [
+            brick % self.bricks[0],
+            (brick / self.bricks[0]) % self.bricks[1],
+        ];
+        let bz = brick / (self.bricks[0] * self.bricks[1]);
+        [
+            4 * bx + (within & 3),
+            4 * by + ((within >> 2) & 3),
+            4 * bz + (within >> 4),
+        ]
+    }
+}
+
 impl ExtinctionGrid {
-    /// The pyramid over the box `[min, max]` with `cells` cells (at least 1) along its longest
-    /// side at level 0, from `cylinders` (their opacity is `1 - transmission`); levels are
-    /// added while a grid has more than 2 nodes along some axis.
-    pub fn new(cylinders: &[Cylinder], min: Vec3, max: Vec3, cells: usize) -> Self {
+    /// The pyramid over the box `[min, max]` with `cells` cells along its longest side at
+    /// level 0, from `cylinders` (their opacity is `1 - transmission`); levels are added while
+    /// a grid has more than 2 nodes along some axis. Level 0 takes up to `(cells + 3)^3` nodes
+    /// of 32 bytes: 74 MB at 128 cells, 570 MB at 256.
+    ///
+    /// # Errors
+    /// [`ParamError::OutOfRange`] if `cells` is outside `[1, MAX_GRID_CELLS]` or the box is
+    /// not finite with `min <= max`.
+    pub fn new(
+        cylinders: &[Cylinder],
+        min: Vec3,
+        max: Vec3,
+        cells: usize,
+    ) -> Result<Self, ParamError> {
+        ParamError::check("grid_cells", cells as f64, "must be in [1, 256]", |c| {
+            (1.0..=MAX_GRID_CELLS as f64).contains(&c)
+        })?;
         let extent = max - min;
-        let cell = (extent.max_element() / cells.max(1) as f32).max(f32::MIN_POSITIVE);
+        let valid_box = min.is_finite() && max.is_finite() && extent.min_element() >= 0.0;
+        if !valid_box {
+            return Err(ParamError::BadVector {
+                name: "box extent",
+                x: f64::from(extent.x),
+                y: f64::from(extent.y),
+                z: f64::from(extent.z),
+                allowed: "the box's corners must be finite with min <= max",
+            });
+        }
+        let cell = (extent.max_element() / cells as f32).max(f32::MIN_POSITIVE);
         let count = |extent: f32| (extent / cell).ceil() as usize + 3;
-        let nodes = [count(extent.x), count(extent.y), count(extent.z)];
+        let layout = Layout::new([count(extent.x), count(extent.y), count(extent.z)]);
         let mut finest = Level {
             origin: min - Vec3::splat(cell),
             cell,
-            nodes,
-            moments: vec![f32x8::ZERO; nodes[0] * nodes[1] * nodes[2]],
+            layout,
+            moments: vec![f32x8::ZERO; layout.len()],
         };
         let mut moments = core::mem::take(&mut finest.moments);
         for cylinder in cylinders {
@@ -182,7 +257,7 @@ impl ExtinctionGrid {
         while let Some(coarser) = levels.last().and_then(Level::coarser) {
             levels.push(coarser);
         }
-        Self { levels }
+        Ok(Self { levels })
     }
 
     /// The node spacing `h` of level 0.
@@ -258,18 +333,20 @@ impl Level {
     /// neighbours (weights `(1/4, 1/2, 1/4)` per axis, renormalised at the borders); `None`
     /// once no axis has more than 2 nodes.
     fn coarser(&self) -> Option<Level> {
-        if self.nodes.iter().all(|&n| n <= 2) {
+        if self.layout.nodes.iter().all(|&n| n <= 2) {
             return None;
         }
-        let nodes = self.nodes.map(|n| n.div_ceil(2));
-        let mut moments = vec![f32x8::ZERO; nodes[0] * nodes[1] * nodes[2]];
+        let layout = Layout::new(self.layout.nodes.map(|n| n.div_ceil(2)));
+        let mut moments = vec![f32x8::ZERO; layout.len()];
         for (fine, m) in self.moments.iter().enumerate() {
-            self.tent_targets(fine, |coarse, weight| moments[coarse] += *m * weight);
+            self.tent_targets(fine, &layout, |coarse, weight| {
+                moments[coarse] += *m * weight
+            });
         }
         Some(Level {
             origin: self.origin,
             cell: 2.0 * self.cell,
-            nodes,
+            layout,
             moments,
         })
     }
@@ -277,18 +354,18 @@ impl Level {
     /// Calls `add(coarse node, weight)` for every node of the next level that fine node `fine`
     /// feeds: per axis, fine `i` feeds coarse `i / 2` with 1/2 if `i` is even, coarse
     /// `(i - 1) / 2` and `(i + 1) / 2` with 1/4 each if odd; each weight divided by the coarse
-    /// node's total weight (1 inside, less where a neighbour is past the border).
-    fn tent_targets(&self, fine: usize, mut add: impl FnMut(usize, f32)) {
-        let index = [
-            fine % self.nodes[0],
-            (fine / self.nodes[0]) % self.nodes[1],
-            fine / (self.nodes[0] * self.nodes[1]),
-        ];
-        let coarse_nodes = self.nodes.map(|n| n.div_ceil(2));
+    /// node's total weight (1 inside, less where a neighbour is past the border). Padding
+    /// nodes feed nothing.
+    fn tent_targets(&self, fine: usize, coarse: &Layout, mut add: impl FnMut(usize, f32)) {
+        let index = self.layout.coordinates(fine);
+        if (0..3).any(|axis| index[axis] >= self.layout.nodes[axis]) {
+            return;
+        }
+        let coarse_nodes = coarse.nodes;
         let mut per_axis = [[(0usize, 0.0f32); 2]; 3];
         let mut counts = [0usize; 3];
         for axis in 0..3 {
-            let (i, n) = (index[axis], self.nodes[axis]);
+            let (i, n) = (index[axis], self.layout.nodes[axis]);
             let candidates: &[(usize, f32)] = if i % 2 == 0 {
                 &[(i / 2, 0.5)]
             } else {
@@ -307,10 +384,7 @@ impl Level {
         for &(x, wx) in &per_axis[0][..counts[0]] {
             for &(y, wy) in &per_axis[1][..counts[1]] {
                 for &(z, wz) in &per_axis[2][..counts[2]] {
-                    add(
-                        (z * coarse_nodes[1] + y) * coarse_nodes[0] + x,
-                        wx * wy * wz,
-                    );
+                    add(coarse.index([x, y, z]), wx * wy * wz);
                 }
             }
         }
@@ -339,50 +413,50 @@ impl Level {
         ]);
         for k in 0..pieces as usize {
             let p = cylinder.base + t * ((k as f32 + 0.5) * piece);
-            let Some((first, f)) = self.cell_of(p) else {
+            let Some((base, f)) = self.cell_of(p) else {
                 continue;
             };
-            for (node, corner) in self.corners(first, f) {
+            for (node, corner) in self.corners(base, f) {
                 add(node, outer * (w * corner));
             }
         }
     }
 
-    /// The index of the lowest corner of the cell holding `p` and `p`'s position in it, or
-    /// `None` if the cell is not inside the grid.
-    fn cell_of(&self, p: Vec3) -> Option<(usize, Vec3)> {
+    /// The lowest corner of the cell holding `p` and `p`'s position in it, or `None` if the
+    /// cell is not inside the grid.
+    fn cell_of(&self, p: Vec3) -> Option<([usize; 3], Vec3)> {
         let g = (p - self.origin) / self.cell;
         if !g.cmpge(Vec3::ZERO).all() {
             return None;
         }
         // Truncation is the floor for these non-negative coordinates (and, unlike `floor`,
         // no library call on baseline x86-64).
-        let [x, y, z] = [g.x as usize, g.y as usize, g.z as usize];
-        let inside = x + 1 < self.nodes[0] && y + 1 < self.nodes[1] && z + 1 < self.nodes[2];
+        let base = [g.x as usize, g.y as usize, g.z as usize];
+        let nodes = self.layout.nodes;
+        let inside = (0..3).all(|axis| base[axis] + 1 < nodes[axis]);
         inside.then(|| {
-            let base = Vec3::new(x as f32, y as f32, z as f32);
-            ((z * self.nodes[1] + y) * self.nodes[0] + x, g - base)
+            let corner = Vec3::new(base[0] as f32, base[1] as f32, base[2] as f32);
+            (base, g - corner)
         })
     }
 
-    /// The eight nodes of the cell whose lowest corner is `first`, with their trilinear
+    /// The eight nodes of the cell whose lowest corner is `base`, with their trilinear
     /// weights at the position `f` in it.
-    fn corners(&self, first: usize, f: Vec3) -> [(usize, f32); 8] {
-        let (sy, sz) = (self.nodes[0], self.nodes[0] * self.nodes[1]);
+    fn corners(&self, [x, y, z]: [usize; 3], f: Vec3) -> [(usize, f32); 8] {
         core::array::from_fn(|k| {
             let (dx, dy, dz) = (k & 1, (k >> 1) & 1, (k >> 2) & 1);
             let pick = |d: usize, f: f32| if d == 1 { f } else { 1.0 - f };
             let weight = pick(dx, f.x) * pick(dy, f.y) * pick(dz, f.z);
-            (first + dx + dy * sy + dz * sz, weight)
+            (self.layout.index([x + dx, y + dy, z + dz]), weight)
         })
     }
 
     /// The moments at `p`, interpolated trilinearly, or `None` outside the grid.
     #[inline]
     fn moments_at(&self, p: Vec3) -> Option<Moments> {
-        let (first, f) = self.cell_of(p)?;
+        let (base, f) = self.cell_of(p)?;
         let mut m = f32x8::ZERO;
-        for (node, weight) in self.corners(first, f) {
+        for (node, weight) in self.corners(base, f) {
             m += self.moments[node] * weight;
         }
         Some(m)
@@ -391,11 +465,8 @@ impl Level {
     /// The distance along `origin + t w` at which the ray leaves the grid's box, or `None`
     /// if it never meets it.
     fn exit_distance(&self, origin: Vec3, w: Vec3) -> Option<f32> {
-        let last = Vec3::new(
-            self.nodes[0] as f32,
-            self.nodes[1] as f32,
-            self.nodes[2] as f32,
-        ) - Vec3::ONE;
+        let [nx, ny, nz] = self.layout.nodes;
+        let last = Vec3::new(nx as f32, ny as f32, nz as f32) - Vec3::ONE;
         let max = self.origin + self.cell * last;
         let inverse = w.abs().max(Vec3::splat(1e-20)).copysign(w).recip();
         let t0 = (self.origin - origin) * inverse;

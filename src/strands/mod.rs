@@ -1,7 +1,8 @@
 //! Hair geometry: strands as polylines of points with per-point thickness, transparency and
 //! colour, as Cem Yuksel's `.hair` format stores them ([`hair_file`]); procedural grooms
 //! ([`groom`]); and the per-vertex transmittance of Gerard's shading, baked to spherical
-//! harmonics.
+//! harmonics ([`transmittance`]) from the segments as cylinders in a bounding-volume hierarchy
+//! ([`occluders`]) and, for the fast baker's far field, as a medium ([`density`]).
 //!
 //! [`Strands`] is the one geometry type every part reads: it is validated once, when it is
 //! built, so the readers, generators and bakers never see a NaN point, a negative thickness or a

@@ -299,7 +299,8 @@ impl Occluders {
 
     /// The transmittance `V` along the ray `origin + t direction`, `t > 0`: the product of
     /// `1 - opacity` over the cylinders it crosses, those of strand `own_strand` excluded
-    /// (`None` excludes nothing). `direction` must have unit length. Returns 0 as soon as the
+    /// (`None` excludes nothing). `direction` must be finite and non-zero (its length does not
+    /// change the crossings; a non-finite one gives meaningless ones). Returns 0 as soon as the
     /// product falls below [`NEGLIGIBLE_TRANSMITTANCE`] (an absolute error below that).
     pub fn transmittance(&self, origin: Vec3, direction: Vec3, own_strand: Option<u32>) -> f32 {
         // Components below 1e-20 in magnitude become 1e-20, so that the slab test never

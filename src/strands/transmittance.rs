@@ -30,14 +30,16 @@
 //! Both run in parallel with rayon, vertex by vertex; each vertex's coefficients are computed
 //! by one thread in a fixed order, so the output does not depend on the thread count.
 
-use super::density::{ExtinctionGrid, March, StrandMoments};
+use super::density::{ExtinctionGrid, March, StrandMoments, MAX_GRID_CELLS};
 use super::occluders::{CrossingSetup, Cylinder, Occluders, Opacity};
 use super::{Segment, Strands};
 use crate::error::ParamError;
 use crate::real::Real;
-use crate::sh::eval_sh_f64_into;
+use crate::sh::{eval_sh_f64, eval_sh_f64_into};
 use core::ops::Range;
 use glam::{DVec3, Vec3};
+use rand_pcg::rand_core::{RngCore, SeedableRng};
+use rand_pcg::Pcg64Mcg;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use wide::f32x8;
@@ -73,7 +75,7 @@ pub struct FastSettings {
     /// grid (so that the settings do not depend on the file's units), in `[0, 16]`.
     pub near_cells: f32,
     /// Cells of the extinction grid along the longest side of the strands' bounding box, in
-    /// `[1, 512]`; the deep opacity maps have texels and depth steps of the same size.
+    /// `[1, 256]` (see [`ExtinctionGrid::new`] for its memory).
     pub grid_cells: usize,
     /// The far-field march's step at distance `t` is `max(h, t cone_steps sqrt(4 pi / K))`
     /// for `K` cells (a cone of a cell's solid angle, times this), in `[0, 4]`.
@@ -86,15 +88,15 @@ impl Default for FastSettings {
             bands: 8,
             near_samples: 2,
             near_cells: 2.0,
-            grid_cells: 128,
-            cone_steps: 0.5,
+            grid_cells: 112,
+            cone_steps: 0.6,
         }
     }
 }
 
 impl Baker {
-    /// The exact baker's default direction count (see the module documentation and
-    /// [`convergence`]).
+    /// The exact baker's default direction count (its error is measured in the tests and the
+    /// README).
     pub const EXACT_DIRECTIONS: usize = 16_384;
 
     /// The baker's name, as `transmittance.json` writes it.
@@ -136,10 +138,97 @@ impl Transmittance {
     }
 
     /// The coefficients of the `k`-th vertex baked (point `vertices.start + k`).
+    ///
+    /// # Panics
+    /// If `k >= vertices.len()`.
     pub fn vertex(&self, k: usize) -> &[f32] {
         let n = self.stride();
         &self.coefficients[k * n..(k + 1) * n]
     }
+}
+
+/// How far one bake is from another (the reference) at the same vertices.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BakeComparison {
+    /// The number of vertices compared.
+    pub vertices: usize,
+    /// The root mean square over vertices and coefficients of the coefficients' difference.
+    pub coefficient_rms: f64,
+    /// The largest difference of one coefficient.
+    pub coefficient_max: f64,
+    /// The root mean square over vertices and random directions of the difference of the
+    /// reconstructed `V` (`sum c_lm Y_lm(w)`).
+    pub v_rms: f64,
+    /// The largest difference of the reconstructed `V` at one vertex and direction.
+    pub v_max: f64,
+    /// The reference's mean `V` (its mean `Y_00` coefficient over `sqrt(4 pi)`), for scale.
+    pub reference_mean_v: f64,
+}
+
+/// Compares `baked` with `reference`: their coefficients, and the `V` they reconstruct at
+/// `directions` random directions per vertex (uniform on the sphere, from a PCG stream seeded
+/// by `seed`, the same directions for both).
+///
+/// # Errors
+/// [`ParamError::OutOfRange`] if the bakes differ in band limit or vertices, or `directions`
+/// is 0 or above 10^6.
+pub fn compare(
+    baked: &Transmittance,
+    reference: &Transmittance,
+    directions: usize,
+    seed: u64,
+) -> Result<BakeComparison, ParamError> {
+    let same_shape = baked.lmax == reference.lmax && baked.vertices == reference.vertices;
+    ParamError::check(
+        "reference lmax",
+        reference.lmax as f64,
+        "must equal the bake's lmax, over the same vertices",
+        |_| same_shape,
+    )?;
+    ParamError::check(
+        "directions",
+        directions as f64,
+        "must be in [1, 10^6]",
+        |n| (1.0..=1e6).contains(&n),
+    )?;
+    let mut rng = Pcg64Mcg::seed_from_u64(seed);
+    let mut uniform = || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+    let bases: Vec<Vec<f64>> = (0..directions)
+        .map(|_| {
+            let z = 2.0 * uniform() - 1.0;
+            let phi = core::f64::consts::TAU * uniform();
+            let s = (1.0 - z * z).max(0.0).sqrt();
+            eval_sh_f64(baked.lmax, DVec3::new(s * phi.cos(), s * phi.sin(), z))
+        })
+        .collect::<Result<_, _>>()?;
+    let vertices = baked.vertices.len();
+    let (mut squares, mut largest, mut v_squares, mut v_largest, mut mean) =
+        (0.0, 0.0f64, 0.0, 0.0f64, 0.0);
+    for k in 0..vertices {
+        let (a, b) = (baked.vertex(k), reference.vertex(k));
+        let difference: Vec<f64> = a
+            .iter()
+            .zip(b)
+            .map(|(a, b)| f64::from(*a) - f64::from(*b))
+            .collect();
+        squares += difference.iter().map(|d| d * d).sum::<f64>();
+        largest = difference.iter().fold(largest, |m, d| m.max(d.abs()));
+        for y in &bases {
+            let dv: f64 = difference.iter().zip(y).map(|(d, y)| d * y).sum();
+            v_squares += dv * dv;
+            v_largest = v_largest.max(dv.abs());
+        }
+        mean += f64::from(b[0]);
+    }
+    let count = vertices.max(1) as f64;
+    Ok(BakeComparison {
+        vertices,
+        coefficient_rms: (squares / (count * baked.stride() as f64)).sqrt(),
+        coefficient_max: largest,
+        v_rms: (v_squares / (count * directions as f64)).sqrt(),
+        v_max: v_largest,
+        reference_mean_v: mean / count / (4.0 * core::f64::consts::PI).sqrt(),
+    })
 }
 
 /// `n` directions of the spherical Fibonacci set: `z_k = 1 - (2k + 1) / n`, azimuth `k` times
@@ -174,19 +263,23 @@ pub fn bake(
     let coefficients = match settings.baker {
         Baker::Exact { directions } => {
             let rule = WeightedBasis::new(settings.lmax, &fibonacci_directions(directions))?;
-            let transmittance = |point: usize, own: Option<u32>, _: &mut (), out: &mut [f32]| {
-                let origin = strands.points()[point];
-                for (v, &d) in out.iter_mut().zip(&rule.directions) {
-                    *v = occluders.transmittance(origin, d, own);
+            let transmittance = |points: Range<usize>, values: &mut [f32]| {
+                let rows = values.chunks_exact_mut(rule.directions.len());
+                for (point, row) in points.zip(rows) {
+                    let origin = strands.points()[point];
+                    let own = own_strand(strands, point);
+                    for (v, &d) in row.iter_mut().zip(&rule.directions) {
+                        *v = occluders.transmittance(origin, d, own);
+                    }
                 }
             };
-            project_vertices(strands, &vertices, &rule, transmittance, progress)
+            project_vertices(&vertices, &rule, transmittance, progress)
         }
         Baker::Fast(fast) => {
             let cells = EqualAreaCells::new(fast.bands);
             let rule = WeightedBasis::new(settings.lmax, &cells.centres())?;
             let (min, max) = bounding_box(strands.points());
-            let grid = ExtinctionGrid::new(occluders.cylinders(), min, max, fast.grid_cells);
+            let grid = ExtinctionGrid::new(occluders.cylinders(), min, max, fast.grid_cells)?;
             let baker = FastBaker {
                 fast,
                 directions: &rule.directions,
@@ -199,10 +292,8 @@ pub fn bake(
                 opacity: settings.opacity,
             };
             let transmittance =
-                |point: usize, own: Option<u32>, scratch: &mut FastScratch, out: &mut [f32]| {
-                    baker.transmittance(point, own, scratch, out)
-                };
-            project_vertices(strands, &vertices, &rule, transmittance, progress)
+                |points: Range<usize>, values: &mut [f32]| baker.transmittance(points, values);
+            project_vertices(&vertices, &rule, transmittance, progress)
         }
     };
     Ok(Transmittance {
@@ -212,38 +303,42 @@ pub fn bake(
     })
 }
 
-/// The coefficients of every vertex in `vertices`, in parallel: `transmittance(point, own
-/// strand, scratch, out)` writes `V` at the rule's nodes, with a scratch state each run of
-/// consecutive vertices shares (for caches and buffers; it must not change the result).
-fn project_vertices<S: Default>(
-    strands: &Strands,
+/// The coefficients of every vertex in `vertices`, in parallel, in runs of [`RUN`]
+/// consecutive vertices: `transmittance(points, values)` writes `V` at the rule's nodes for
+/// the run's points, point-major (a run's points are its own, so the result does not depend on
+/// how runs are spread over threads).
+fn project_vertices(
     vertices: &Range<usize>,
     rule: &WeightedBasis,
-    transmittance: impl Fn(usize, Option<u32>, &mut S, &mut [f32]) + Sync,
+    transmittance: impl Fn(Range<usize>, &mut [f32]) + Sync,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Vec<f32> {
-    const CHUNK: usize = 16;
-    let stride = rule.stride;
+    let (stride, nodes) = (rule.stride, rule.directions.len());
     let mut coefficients = vec![0.0f32; vertices.len() * stride];
     let done = AtomicUsize::new(0);
     let total = vertices.len();
     coefficients
-        .par_chunks_mut(CHUNK * stride)
+        .par_chunks_mut(RUN * stride)
         .enumerate()
-        .for_each(|(chunk, out)| {
-            let first = vertices.start + chunk * CHUNK;
-            let mut v = vec![0.0f32; rule.directions.len()];
-            let mut scratch = S::default();
-            for (k, c) in out.chunks_exact_mut(stride).enumerate() {
-                let point = first + k;
-                let own = strands.strand_of_point(point).map(|s| s as u32);
-                transmittance(point, own, &mut scratch, &mut v);
-                rule.project(&v, c);
+        .for_each(|(run, out)| {
+            let first = vertices.start + run * RUN;
+            let count = out.len() / stride;
+            let mut values = vec![0.0f32; count * nodes];
+            transmittance(first..first + count, &mut values);
+            for (c, v) in out.chunks_exact_mut(stride).zip(values.chunks_exact(nodes)) {
+                rule.project(v, c);
             }
-            let n = out.len() / stride;
-            progress(done.fetch_add(n, Ordering::Relaxed) + n, total);
+            progress(done.fetch_add(count, Ordering::Relaxed) + count, total);
         });
     coefficients
+}
+
+/// Vertices per run of [`project_vertices`].
+const RUN: usize = 16;
+
+/// The strand of `point` (excluded from its transmittance).
+fn own_strand(strands: &Strands, point: usize) -> Option<u32> {
+    strands.strand_of_point(point).map(|s| s as u32)
 }
 
 /// The smallest box holding every point.
@@ -314,47 +409,70 @@ impl FastBaker<'_> {
     /// Far-field optical depths above this are taken as opaque (`e^-17 < 2^-24`).
     const DEPTH_CUTOFF: f32 = 17.0;
 
-    /// `V` per cell at `point`.
-    fn transmittance(
+    /// `V` per cell at each of `points`, point-major: the near field's transmittance times
+    /// the far field's.
+    fn transmittance(&self, points: Range<usize>, values: &mut [f32]) {
+        let cells = self.directions.len();
+        let mut own: Option<(u32, StrandMoments)> = None;
+        let mut near = NearScratch::default();
+        for (point, row) in points.zip(values.chunks_exact_mut(cells)) {
+            let strand = own_strand(self.strands, point);
+            if own.as_ref().map(|(s, _)| *s) != strand {
+                own = strand.map(|s| (s, self.strand_moments(s)));
+            }
+            self.near_field(point, strand, &mut near, row);
+            self.far_field(point, own.as_ref().map(|(_, m)| m), row);
+        }
+    }
+
+    /// The near field's transmittance per cell at `point` (the mean over the cell's rays).
+    fn near_field(
         &self,
         point: usize,
         own: Option<u32>,
-        scratch: &mut FastScratch,
-        out: &mut [f32],
+        scratch: &mut NearScratch,
+        row: &mut [f32],
     ) {
         let origin = self.strands.points()[point];
-        let radius = self.fast.near_cells * self.grid.cell();
-        scratch.near.clear();
-        self.occluders.near(origin, radius, own, &mut scratch.near);
+        let radius = self.near_radius();
+        scratch.cylinders.clear();
+        self.occluders
+            .near(origin, radius, own, &mut scratch.cylinders);
         scratch.lanes.clear();
         scratch.lanes.resize(self.near_groups.len(), f32x8::ONE);
         near_field(
-            &scratch.near,
+            &scratch.cylinders,
             origin,
             radius,
             &self.near_groups,
             &mut scratch.lanes,
         );
-        if scratch.own.as_ref().map(|(strand, _)| *strand) != own {
-            scratch.own = own.map(|strand| (strand, self.strand_moments(strand)));
-        }
-        let own_moments = scratch.own.as_ref().map(|(_, moments)| moments);
         let per_cell = self.fast.near_samples * self.fast.near_samples;
+        let mut samples = scratch.lanes.iter().flat_map(|l| l.to_array());
+        for v in row.iter_mut() {
+            *v = samples.by_ref().take(per_cell).sum::<f32>() / per_cell as f32;
+        }
+    }
+
+    /// Multiplies each cell's value in `row` by the far field's transmittance from `point`
+    /// along the cell's central direction, the medium without the moments `own`.
+    fn far_field(&self, point: usize, own: Option<&StrandMoments>, row: &mut [f32]) {
+        let origin = self.strands.points()[point];
         let march = March {
-            start: radius,
-            cone: self.fast.cone_steps * (4.0 * core::f32::consts::PI / out.len() as f32).sqrt(),
+            start: self.near_radius(),
+            cone: self.fast.cone_steps * (4.0 * core::f32::consts::PI / row.len() as f32).sqrt(),
             cutoff: Self::DEPTH_CUTOFF,
         };
-        let mut samples = scratch.lanes.iter().flat_map(|l| l.to_array());
-        for (v, &w) in out.iter_mut().zip(self.directions) {
-            let near_v = samples.by_ref().take(per_cell).sum::<f32>() / per_cell as f32;
-            let depth = if near_v == 0.0 {
-                0.0
-            } else {
-                self.grid.optical_depth(origin, w, march, own_moments)
-            };
-            *v = near_v * (-depth).exp();
+        for (v, &w) in row.iter_mut().zip(self.directions) {
+            if *v > 0.0 {
+                *v *= (-self.grid.optical_depth(origin, w, march, own)).exp();
+            }
         }
+    }
+
+    /// The radius of the near field.
+    fn near_radius(&self) -> f32 {
+        self.fast.near_cells * self.grid.cell()
     }
 
     /// The moments strand `strand` deposited into the grid.
@@ -373,13 +491,11 @@ impl FastBaker<'_> {
     }
 }
 
-/// What the fast baker keeps between the vertices of a run: buffers, and the moments of the
-/// last vertex's strand.
+/// The near field's buffers, kept from vertex to vertex.
 #[derive(Default)]
-struct FastScratch {
-    near: Vec<Cylinder>,
+struct NearScratch {
+    cylinders: Vec<Cylinder>,
     lanes: Vec<f32x8>,
-    own: Option<(u32, StrandMoments)>,
 }
 
 /// Multiplies each direction's lane of `out` (1 to start with) by the transmission of every
@@ -543,8 +659,8 @@ impl FastSettings {
         ParamError::check(
             "grid_cells",
             self.grid_cells as f64,
-            "must be in [1, 512]",
-            in_range(1.0, 512.0),
+            "must be in [1, 256]",
+            in_range(1.0, MAX_GRID_CELLS as f64),
         )?;
         ParamError::check(
             "cone_steps",

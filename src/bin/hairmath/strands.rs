@@ -7,11 +7,15 @@ use clap::{Args, ValueEnum};
 use hairmath::strands::groom::{groom, GroomKind, GroomSettings};
 use hairmath::strands::hair_file::{read_hair_file, write_hair_file, HairFile};
 use hairmath::strands::occluders::Opacity;
-use hairmath::strands::transmittance::{bake, BakeSettings, Baker, FastSettings};
+use hairmath::strands::transmittance::{
+    bake, compare, BakeComparison, BakeSettings, Baker, FastSettings, Transmittance,
+};
+use hairmath::strands::Strands;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
 use std::fs;
 use std::io::Write;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -115,6 +119,12 @@ pub struct BakeArgs {
     /// The fast baker's direction cells: 2 n^2 of them, n in [1, 64].
     #[arg(long, default_value_t = FastSettings::default().bands)]
     bands: usize,
+    /// Also bake the same vertices with the exact baker at --directions (and at a quarter of
+    /// them, to show the reference's convergence) and print how far the bake is from it: the
+    /// coefficients' RMS and largest difference, and those of V reconstructed at 64 random
+    /// directions per vertex (also under "comparison" in transmittance.json).
+    #[arg(long, conflicts_with = "exact")]
+    compare: bool,
     /// Bake the vertices of the first N strands only (all strands still occlude).
     #[arg(long, value_name = "N")]
     first_strands: Option<usize>,
@@ -168,6 +178,18 @@ pub fn run_bake(args: &BakeArgs) -> Result<(), CliError> {
     bar.finish_and_clear();
     let baked = baked?;
     let seconds = start.elapsed().as_secs_f64();
+    let comparison = args
+        .compare
+        .then(|| {
+            compare_with_exact(
+                strands,
+                vertices.clone(),
+                &settings,
+                &baked,
+                args.directions,
+            )
+        })
+        .transpose()?;
     fs::create_dir_all(&args.out).map_err(|e| io_error(&args.out, e))?;
     let raw: Vec<u8> = baked
         .coefficients
@@ -187,6 +209,12 @@ pub fn run_bake(args: &BakeArgs) -> Result<(), CliError> {
         "baker_settings": format!("{:?}", settings.baker),
         "opacity": args.opacity.map_or(json!("1 - transparency of the file"), |a| json!(a)),
         "timing": { "seconds": seconds, "threads": rayon::current_num_threads() },
+        "comparison": comparison.as_ref().map(|c| json!({
+            "against": format!("exact, {} directions", args.directions),
+            "exact_seconds": c.exact_seconds,
+            "bake": comparison_json(&c.bake),
+            "reference_convergence": comparison_json(&c.reference),
+        })),
     });
     let text = serde_json::to_string_pretty(&description).expect("JSON of plain values");
     write(&args.out.join("transmittance.json"), text.as_bytes())?;
@@ -199,7 +227,84 @@ pub fn run_bake(args: &BakeArgs) -> Result<(), CliError> {
         settings.baker.name(),
         args.out.display()
     )?;
+    if let Some(comparison) = &comparison {
+        writeln!(out, "{}", comparison_table(comparison, args.directions))?;
+    }
     Ok(())
+}
+
+/// The bake against the exact baker at `directions`, and the exact baker at a quarter of them
+/// against it.
+struct Comparison {
+    bake: BakeComparison,
+    reference: BakeComparison,
+    exact_seconds: f64,
+}
+
+/// Bakes `vertices` with the exact baker at `directions` and at a quarter of them, and
+/// compares `baked` and the quarter bake with the full one.
+fn compare_with_exact(
+    strands: &Strands,
+    vertices: Range<usize>,
+    settings: &BakeSettings,
+    baked: &Transmittance,
+    directions: usize,
+) -> Result<Comparison, CliError> {
+    let exact = |directions| BakeSettings {
+        baker: Baker::Exact { directions },
+        ..*settings
+    };
+    let start = Instant::now();
+    let reference = bake(strands, vertices.clone(), &exact(directions), &|_, _| {})?;
+    let exact_seconds = start.elapsed().as_secs_f64();
+    let quarter = bake(
+        strands,
+        vertices,
+        &exact((directions / 4).max(1)),
+        &|_, _| {},
+    )?;
+    Ok(Comparison {
+        bake: compare(baked, &reference, COMPARISON_DIRECTIONS, 1)?,
+        reference: compare(&quarter, &reference, COMPARISON_DIRECTIONS, 1)?,
+        exact_seconds,
+    })
+}
+
+/// Random directions per vertex at which the comparison reconstructs V.
+const COMPARISON_DIRECTIONS: usize = 64;
+
+fn comparison_json(c: &BakeComparison) -> serde_json::Value {
+    json!({
+        "vertices": c.vertices,
+        "coefficient_rms": c.coefficient_rms,
+        "coefficient_max": c.coefficient_max,
+        "v_rms": c.v_rms,
+        "v_max": c.v_max,
+        "reference_mean_v": c.reference_mean_v,
+    })
+}
+
+fn comparison_table(c: &Comparison, directions: usize) -> String {
+    let row = |name: String, c: &BakeComparison| {
+        format!(
+            "| {name} | {:.4} | {:.4} | {:.4} | {:.4} |",
+            c.coefficient_rms, c.coefficient_max, c.v_rms, c.v_max
+        )
+    };
+    [
+        format!(
+            "against the exact baker at {directions} directions ({:.1} s; mean V {:.4}):",
+            c.exact_seconds, c.reference.reference_mean_v
+        ),
+        "| bake | coefficient rms | coefficient max | V rms | V max |".into(),
+        "|---|---:|---:|---:|---:|".into(),
+        row("this bake".into(), &c.bake),
+        row(
+            format!("exact, {} directions", (directions / 4).max(1)),
+            &c.reference,
+        ),
+    ]
+    .join("\n")
 }
 
 fn too_many(asked: usize, strands: usize) -> CliError {
