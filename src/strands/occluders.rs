@@ -19,6 +19,7 @@
 
 use super::{Segment, Strands};
 use crate::real::Real;
+use core::ops::ControlFlow;
 use glam::{Vec3, Vec3A};
 
 /// The most cylinders in a leaf of the hierarchy.
@@ -229,6 +230,12 @@ impl Aabb {
         d.x * d.y + d.y * d.z + d.z * d.x
     }
 
+    /// The squared distance from `point` to the box (0 inside).
+    fn distance_squared(&self, point: Vec3A) -> f32 {
+        let outside = (self.min - point).max(point - self.max).max(Vec3A::ZERO);
+        outside.length_squared()
+    }
+
     /// Whether the ray (given by its origin and the reciprocals of its direction's
     /// components) enters the box at some `t >= 0`: the slab test.
     fn hit_by(&self, origin: Vec3A, inverse_direction: Vec3A) -> bool {
@@ -313,30 +320,21 @@ impl Occluders {
         let ray_origin = Vec3A::from(origin);
         let own = own_strand.unwrap_or(u32::MAX);
         let mut v = 1.0_f32;
-        let mut stack = [0u32; STACK];
-        let mut depth = 1;
-        while depth > 0 {
-            depth -= 1;
-            let node = self.nodes[stack[depth] as usize];
-            if !node.bounds.hit_by(ray_origin, inverse) {
-                continue;
-            }
-            if node.count == 0 {
-                stack[depth] = node.first;
-                stack[depth + 1] = node.first + 1;
-                depth += 2;
-                continue;
-            }
-            let range = node.first as usize..(node.first + node.count) as usize;
-            for cylinder in &self.cylinders[range] {
-                if cylinder.strand != own && cylinder.crossed_by(origin, direction) {
-                    v *= cylinder.transmission;
+        self.visit(
+            |bounds| bounds.hit_by(ray_origin, inverse),
+            |leaf| {
+                for cylinder in leaf {
+                    if cylinder.strand != own && cylinder.crossed_by(origin, direction) {
+                        v *= cylinder.transmission;
+                    }
                 }
-            }
-            if v < NEGLIGIBLE_TRANSMITTANCE {
-                return 0.0;
-            }
-        }
+                if v < NEGLIGIBLE_TRANSMITTANCE {
+                    v = 0.0;
+                    return ControlFlow::Break(());
+                }
+                ControlFlow::Continue(())
+            },
+        );
         v
     }
 
@@ -345,12 +343,30 @@ impl Occluders {
     pub fn near(&self, point: Vec3, radius: f32, own_strand: Option<u32>, out: &mut Vec<Cylinder>) {
         let own = own_strand.unwrap_or(u32::MAX);
         let centre = Vec3A::from(point);
+        self.visit(
+            |bounds| bounds.distance_squared(centre) <= radius * radius,
+            |leaf| {
+                let near =
+                    |c: &&Cylinder| c.strand != own && c.axis_distance(point) < radius + c.radius;
+                out.extend(leaf.iter().filter(near));
+                ControlFlow::Continue(())
+            },
+        );
+    }
+
+    /// Walks the hierarchy depth first into every node whose box `enters` accepts, calling
+    /// `leaf` with each leaf's cylinders until it breaks.
+    fn visit(
+        &self,
+        enters: impl Fn(&Aabb) -> bool,
+        mut leaf: impl FnMut(&[Cylinder]) -> ControlFlow<()>,
+    ) {
         let mut stack = [0u32; STACK];
         let mut depth = 1;
         while depth > 0 {
             depth -= 1;
             let node = self.nodes[stack[depth] as usize];
-            if node.bounds.distance_squared(centre) > radius * radius {
+            if !enters(&node.bounds) {
                 continue;
             }
             if node.count == 0 {
@@ -360,20 +376,10 @@ impl Occluders {
                 continue;
             }
             let range = node.first as usize..(node.first + node.count) as usize;
-            out.extend(
-                self.cylinders[range]
-                    .iter()
-                    .filter(|c| c.strand != own && c.axis_distance(point) < radius + c.radius),
-            );
+            if leaf(&self.cylinders[range]).is_break() {
+                return;
+            }
         }
-    }
-}
-
-impl Aabb {
-    /// The squared distance from `point` to the box (0 inside).
-    fn distance_squared(&self, point: Vec3A) -> f32 {
-        let outside = (self.min - point).max(point - self.max).max(Vec3A::ZERO);
-        outside.length_squared()
     }
 }
 
