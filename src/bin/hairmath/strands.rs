@@ -90,12 +90,13 @@ pub fn run_groom(args: &GroomArgs) -> Result<(), CliError> {
     );
     let file = HairFile { strands, info };
     write_hair_file(&args.out, &file).map_err(|e| CliError::Strands(e.to_string()))?;
-    println!(
+    writeln!(
+        std::io::stdout().lock(),
         "{}: {} strands, {} points",
         args.out.display(),
         file.strands.strand_count(),
         file.strands.point_count()
-    );
+    )?;
     Ok(())
 }
 
