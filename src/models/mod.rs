@@ -82,6 +82,7 @@ pub use scheuermann::{
 
 // The table-based models (Nguyen-Donnelly, Gerard's direct lighting).
 mod gerard_direct;
+pub mod gerard_sh;
 mod nguyen_donnelly;
 pub use gerard_direct::{Gerard, GerardLobe, GerardUniforms, GERARD_N_SIZES, GERARD_REFIT_ENTRY};
 pub use nguyen_donnelly::{

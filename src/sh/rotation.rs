@@ -147,34 +147,9 @@ impl ShRotation {
             "must be at most MAX_ROTATION_LMAX = 256",
             |l| l <= MAX_ROTATION_LMAX as f64,
         )?;
-        // Band 1 of the basis without Condon-Shortley phase: R permuted to (y, z, x).
-        const P: [usize; 3] = [1, 2, 0];
-        let mut r1 = vec![0.0; 9];
-        for i in 0..3 {
-            for j in 0..3 {
-                r1[i * 3 + j] = r[P[i]][P[j]];
-            }
-        }
-        let mut blocks = vec![vec![1.0]];
-        if lmax >= 1 {
-            blocks.push(r1.clone());
-        }
-        for l in 2..=lmax {
-            let next = ir_band(l, &r1, &blocks[l - 1]);
-            blocks.push(next);
-        }
-        // Convert to the Condon-Shortley basis: Y_lm = (-1)^m Y^IR_lm.
-        for (l, block) in blocks.iter_mut().enumerate() {
-            let w = 2 * l + 1;
-            for i in 0..w {
-                for j in 0..w {
-                    if (i + j) % 2 == 1 {
-                        block[i * w + j] = -block[i * w + j];
-                    }
-                }
-            }
-        }
-        Ok(ShRotation { blocks })
+        Ok(ShRotation {
+            blocks: rotation_blocks(&r, lmax),
+        })
     }
 
     /// Highest band held.
@@ -233,15 +208,66 @@ impl ShRotation {
     }
 }
 
+/// The band matrices `D_0 .. D_lmax` of the rotation `r` (row-major, `r[i][j] = R_ij`,
+/// assumed orthonormal), each row-major with entry `(m + l) (2l + 1) + (n + l)` = `D_mn`, in
+/// any precision or as traced shader code: the Ivanic-Ruedenberg recurrences (module
+/// documentation), whose branches depend on the band and the indices only. [`ShRotation`] is
+/// these blocks in `f64`; [`rotate_with_blocks`] applies them.
+pub fn rotation_blocks<R: Real>(r: &[[R; 3]; 3], lmax: usize) -> Vec<Vec<R>> {
+    // Band 1 of the basis without Condon-Shortley phase: R permuted to (y, z, x).
+    const P: [usize; 3] = [1, 2, 0];
+    let r1: Vec<R> = (0..9).map(|k| r[P[k / 3]][P[k % 3]]).collect();
+    let mut blocks = vec![vec![R::c(1.0)]];
+    if lmax >= 1 {
+        blocks.push(r1.clone());
+    }
+    for l in 2..=lmax {
+        let next = ir_band(l, &r1, &blocks[l - 1]);
+        blocks.push(next);
+    }
+    // Convert to the Condon-Shortley basis: Y_lm = (-1)^m Y^IR_lm.
+    for (l, block) in blocks.iter_mut().enumerate() {
+        let w = 2 * l + 1;
+        for (k, value) in block.iter_mut().enumerate() {
+            if (k / w + k % w) % 2 == 1 {
+                *value = -*value;
+            }
+        }
+    }
+    blocks
+}
+
+/// `out_l = D_l c_l` band by band for the blocks of [`rotation_blocks`]; `coefficients` and
+/// `out` hold the same bands `l <= blocks.len() - 1` (their common length `(L + 1)^2` decides
+/// how many are rotated).
+///
+/// # Panics
+/// If `out` is shorter than `coefficients`, or `coefficients` needs more bands than `blocks`
+/// holds.
+pub fn rotate_with_blocks<R: Real>(blocks: &[Vec<R>], coefficients: &[R], out: &mut [R]) {
+    let mut l = 0;
+    while (l + 1) * (l + 1) <= coefficients.len() {
+        let (w, start) = (2 * l + 1, l * l);
+        let source = &coefficients[start..start + w];
+        for (i, o) in out[start..start + w].iter_mut().enumerate() {
+            let row = &blocks[l][i * w..(i + 1) * w];
+            let mut terms = row.iter().zip(source).map(|(&d, &c)| d * c);
+            let first = terms.next().expect("a band has at least one coefficient");
+            *o = terms.fold(first, |sum, term| sum + term);
+        }
+        l += 1;
+    }
+}
+
 /// One Ivanic-Ruedenberg step: `M^l` from `R^1` (3x3, indices -1..1) and `M^{l-1}`.
-fn ir_band(l: usize, r1: &[f64], prev: &[f64]) -> Vec<f64> {
+fn ir_band<R: Real>(l: usize, r1: &[R], prev: &[R]) -> Vec<R> {
     let li = l as i64;
     let w = 2 * l + 1;
     let pw = 2 * l - 1;
     let r = |i: i64, j: i64| r1[((i + 1) * 3 + (j + 1)) as usize];
     let m_prev = |a: i64, b: i64| prev[((a + li - 1) * pw as i64 + (b + li - 1)) as usize];
     // P(i, a, b) of Ivanic and Ruedenberg (Table 2).
-    let p = |i: i64, a: i64, b: i64| -> f64 {
+    let p = |i: i64, a: i64, b: i64| -> R {
         if b == li {
             r(i, 1) * m_prev(a, li - 1) - r(i, -1) * m_prev(a, -li + 1)
         } else if b == -li {
@@ -250,7 +276,7 @@ fn ir_band(l: usize, r1: &[f64], prev: &[f64]) -> Vec<f64> {
             r(i, 0) * m_prev(a, b)
         }
     };
-    let mut out = vec![0.0; w * w];
+    let mut out = Vec::with_capacity(w * w);
     for m in -li..=li {
         for n in -li..=li {
             let d = if m == 0 { 1.0 } else { 0.0 };
@@ -265,21 +291,30 @@ fn ir_band(l: usize, r1: &[f64], prev: &[f64]) -> Vec<f64> {
                 * ((1.0 + d) * ((li + am - 1) * (li + am)) as f64 / denom).sqrt()
                 * (1.0 - 2.0 * d);
             let wc = -0.5 * (((li - am - 1) * (li - am)) as f64 / denom).sqrt() * (1.0 - d);
-            let mut value = 0.0;
+            // Terms with a zero factor are left out and unit factors not multiplied, so that
+            // traced code holds only the arithmetic that matters.
+            let mut terms: Vec<R> = Vec::with_capacity(3);
             if u != 0.0 {
-                value += u * p(0, m, n);
+                terms.push(R::c(u) * p(0, m, n));
             }
             if v != 0.0 {
-                let vv = if m == 0 {
-                    p(1, 1, n) + p(-1, -1, n)
+                let (a, b) = if m == 0 {
+                    ((1.0, p(1, 1, n)), (1.0, p(-1, -1, n)))
                 } else if m > 0 {
                     let d1 = if m == 1 { 1.0 } else { 0.0 };
-                    p(1, m - 1, n) * (1.0 + d1).sqrt() - p(-1, -m + 1, n) * (1.0 - d1)
+                    (
+                        (2f64.sqrt().powf(d1), p(1, m - 1, n)),
+                        (d1 - 1.0, p(-1, -m + 1, n)),
+                    )
                 } else {
                     let d1 = if m == -1 { 1.0 } else { 0.0 };
-                    p(1, m + 1, n) * (1.0 - d1) + p(-1, -m - 1, n) * (1.0 + d1).sqrt()
+                    (
+                        (1.0 - d1, p(1, m + 1, n)),
+                        (2f64.sqrt().powf(d1), p(-1, -m - 1, n)),
+                    )
                 };
-                value += v * vv;
+                let vv = weighted_sum(&[a, b]);
+                terms.push(R::c(v) * vv);
             }
             if wc != 0.0 {
                 let ww = if m > 0 {
@@ -287,12 +322,27 @@ fn ir_band(l: usize, r1: &[f64], prev: &[f64]) -> Vec<f64> {
                 } else {
                     p(1, m - 1, n) - p(-1, -m + 1, n)
                 };
-                value += wc * ww;
+                terms.push(R::c(wc) * ww);
             }
-            out[((m + li) * w as i64 + (n + li)) as usize] = value;
+            let first = terms.first().copied().unwrap_or(R::c(0.0));
+            out.push(terms.iter().skip(1).fold(first, |sum, &t| sum + t));
         }
     }
     out
+}
+
+/// `sum_k c_k x_k` over the `(c_k, x_k)` with `c_k != 0`, unit factors not multiplied; 0 if
+/// every `c_k` is 0.
+fn weighted_sum<R: Real>(terms: &[(f64, R)]) -> R {
+    let scaled = terms
+        .iter()
+        .filter(|(c, _)| *c != 0.0)
+        .map(|&(c, x)| match c {
+            1.0 => x,
+            -1.0 => -x,
+            _ => R::c(c) * x,
+        });
+    scaled.reduce(|sum, t| sum + t).unwrap_or(R::c(0.0))
 }
 
 /// Coefficients of the zonal function with coefficients `zonal[l]` (of `Y_l0`, symmetric

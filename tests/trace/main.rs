@@ -49,7 +49,10 @@ static COEFFICIENTS: NamedConstant = NamedConstant {
 use hairmath::real::{ArgType, Parameter, ResultType};
 use hairmath::sh::{eval_sh, eval_sh_into};
 use hairmath::sh::{product, triple_product_integral, ProductPlan};
-use hairmath::sh::{rotate_band1, rotate_band2, rotate_bands012, rotate_zonal_into};
+use hairmath::sh::{
+    rotate_band1, rotate_band2, rotate_bands012, rotate_with_blocks, rotate_zonal_into,
+    rotation_blocks,
+};
 use std::collections::BTreeSet;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
@@ -621,6 +624,8 @@ mod classic;
 mod composed;
 /// The Frostbite models (`hairmath::models::{Frostbite, FrostbiteRefit}`).
 mod frostbite;
+/// Gerard's spherical-harmonic shading (`hairmath::models::gerard_sh`).
+mod gerard_sh;
 /// The closed forms of the real-time models (`hairmath::models`).
 mod models;
 /// The crossing test of the transmittance bakers (`hairmath::strands`).
@@ -1063,6 +1068,17 @@ traced_tests! {
             rotate_band2(&mat3(x), arr(&x[9..])).to_vec()
         });
     }
+    sh_rotation_blocks ["rotation_blocks", "rotate_with_blocks"] {
+        for bands in [1, 3, 5] {
+            let n = bands * bands;
+            case!(format!("rotation_blocks(lmax = {})", bands - 1), rotation_rows(n), |x| {
+                let blocks = rotation_blocks(&mat3(x), bands - 1);
+                let mut out = vec![x[0]; n];
+                rotate_with_blocks(&blocks, &x[9..9 + n], &mut out);
+                out
+            });
+        }
+    }
     sh_rotate_bands012 ["rotate_bands012"] {
         case!("rotate_bands012", rotation_rows(9), |x| {
             rotate_bands012(&mat3(x), arr(&x[9..])).to_vec()
@@ -1234,6 +1250,7 @@ fn coverage_matches_the_source() {
         composed::COVERED,
         varying::COVERED,
         strands::COVERED,
+        gerard_sh::COVERED,
     ]
     .concat();
     let covered: BTreeSet<String> = all.iter().map(|s| s.to_string()).collect();
