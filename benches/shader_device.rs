@@ -6,6 +6,9 @@
 //! models by the ratios of one run to Kajiya-Kay's: software rasterisers and these machines are
 //! noisy, and llvmpipe's costs are not a GPU's.
 //!
+//! The group `gerard_sh_device` times Gerard's SH shading (phase and transmittance bands as in
+//! the README) on the same dispatch size.
+//!
 //! Run: `cargo bench --bench shader_device`.
 
 #[path = "../tests/shader/gpu.rs"]
@@ -14,6 +17,11 @@ mod gpu;
 
 use criterion::{criterion_group, Criterion, Throughput};
 use hairmath::diagnostics::DirectionPairs;
+use hairmath::models::gerard_sh::SHADE_FUNCTION;
+use hairmath::params::HairParams;
+use hairmath::render::{
+    gerard_graph, gerard_source_mapped, GerardConfig, PhaseAbsorption, RenderSettings,
+};
 use hairmath::shader::example_shaders;
 use std::time::Duration;
 
@@ -75,6 +83,78 @@ fn device_cost(c: &mut Criterion) {
         });
     }
     group.finish();
+    gerard_cost(device);
+}
+
+/// Gerard's SH shading ([`hairmath::render::gerard_graph`]) in the configurations of the
+/// README's table, over rows of (tangent, wo, light, light radiance, transmittance): the same
+/// dispatch size, so the times compare with Kajiya-Kay's above.
+fn gerard_cost(device: &gpu::Device) {
+    let mut c = Criterion::default().configure_from_args();
+    let mut group = c.benchmark_group("gerard_sh_device");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(500));
+    group.measurement_time(Duration::from_secs(4));
+    group.throughput(Throughput::Elements(ROWS as u64));
+    let settings = RenderSettings::default();
+    let source = gerard_source_mapped(&HairParams::default()).expect("the default hair maps");
+    for (phase_lmax, v_lmax) in [(1, 2), (2, 2), (4, 2), (4, 4)] {
+        let config = GerardConfig {
+            phase_lmax,
+            v_lmax,
+            absorption: PhaseAbsorption::Published,
+            rgba8: false,
+            bias: 0.0,
+        };
+        let graph = gerard_graph(&source, &config, &settings).expect("traced");
+        let module = hairmath::shader::lower(&graph, SHADE_FUNCTION).expect("lowered");
+        let stride = module.argument_scalars();
+        let wgsl = module
+            .with_compute_entry(stride)
+            .and_then(|m| m.wgsl())
+            .expect("WGSL");
+        let queries = gerard_rows(stride);
+        let textures = gpu::textures_of(&module);
+        let name = format!("phase_l{phase_lmax}_v_l{v_lmax}");
+        group.bench_function(name, |b| {
+            b.iter_custom(|iters| {
+                let per_eval = device
+                    .time_per_eval(
+                        &wgsl,
+                        "hair_main",
+                        &queries,
+                        stride,
+                        &textures,
+                        iters as usize,
+                    )
+                    .expect("the dispatch runs");
+                Duration::from_secs_f64(per_eval * ROWS as f64 * iters as f64)
+            })
+        });
+    }
+    group.finish();
+}
+
+/// `ROWS` rows of Gerard's arguments: the pairs of a Kronecker set as tangent and viewer, the
+/// light along their sum, a grey light, and a transmittance of mean 0.6.
+fn gerard_rows(stride: usize) -> Vec<f32> {
+    let pairs = DirectionPairs::kronecker(ROWS);
+    pairs
+        .pairs()
+        .iter()
+        .flat_map(|(t, wo)| {
+            let sum = glam::DVec3::new(t.x + wo.x, t.y + wo.y, t.z + wo.z);
+            let l = sum.normalize_or(glam::DVec3::Y);
+            let mut row: Vec<f32> = [
+                t.x, t.y, t.z, wo.x, wo.y, wo.z, l.x, l.y, l.z, 1.0, 1.0, 1.0,
+            ]
+            .map(|v| v as f32)
+            .to_vec();
+            row.push(2.1);
+            row.resize(stride, 0.1);
+            row
+        })
+        .collect()
 }
 
 criterion_group!(benches, device_cost);

@@ -18,6 +18,8 @@ pub mod plan;
 pub mod quadrature;
 pub mod real;
 pub mod registry;
+#[cfg(feature = "strands")]
+pub mod render;
 pub mod sh;
 #[cfg(feature = "shader")]
 pub mod shader;

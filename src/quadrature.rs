@@ -3,7 +3,9 @@
 //! integration with an error estimate, and the crate's one deterministic point sequence
 //! ([`kronecker`]) for test points and timing inputs.
 
+use crate::error::ParamError;
 use crate::geometry::{local_direction, V3};
+use glam::DVec3;
 use std::collections::BinaryHeap;
 
 /// Nodes and weights of the n-point Gauss-Legendre rule on [-1, 1], by Newton's method on the
@@ -61,6 +63,23 @@ pub fn integrate(
     0.5 * width * sum
 }
 
+/// The most directions of [`SphereRule::fibonacci`].
+pub const MAX_FIBONACCI_DIRECTIONS: usize = 1 << 22;
+
+/// `n` directions of the spherical Fibonacci set: `z_k = 1 - (2k + 1) / n`, azimuth `k` times
+/// the golden angle `pi (3 - sqrt 5)`; each stands for the solid angle `4 pi / n`.
+pub fn fibonacci_directions(n: usize) -> Vec<DVec3> {
+    let golden_angle = core::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..n)
+        .map(|k| {
+            let z = 1.0 - (2 * k + 1) as f64 / n as f64;
+            let s = (1.0 - z * z).max(0.0).sqrt();
+            let (sin, cos) = (golden_angle * k as f64).sin_cos();
+            DVec3::new(s * cos, s * sin, z)
+        })
+        .collect()
+}
+
 /// A product rule over the unit sphere in the fibre's local frame (tangent +X):
 /// composite Gauss-Legendre in theta in [-pi/2, pi/2] with weight cos(theta), and the midpoint
 /// rule with `azimuths` nodes in phi, which converges geometrically for smooth periodic
@@ -91,6 +110,24 @@ impl SphereRule {
             }
         }
         SphereRule { nodes }
+    }
+
+    /// The equal-weight rule on the `n` directions of [`fibonacci_directions`] (each weighing
+    /// `4 pi / n`): for integrands with discontinuities (a transmittance), where no product rule
+    /// is exact, it spreads the error evenly over the sphere.
+    ///
+    /// # Errors
+    /// [`ParamError::OutOfRange`] if `n` is outside `[1, MAX_FIBONACCI_DIRECTIONS]` (2^22).
+    pub fn fibonacci(n: usize) -> Result<Self, ParamError> {
+        ParamError::check("directions", n as f64, "must be in [1, 2^22]", |n| {
+            (1.0..=MAX_FIBONACCI_DIRECTIONS as f64).contains(&n)
+        })?;
+        let weight = 4.0 * core::f64::consts::PI / n as f64;
+        let nodes = fibonacci_directions(n)
+            .into_iter()
+            .map(|d| (V3::new(d.x, d.y, d.z), weight))
+            .collect();
+        Ok(SphereRule { nodes })
     }
 
     /// Integral over the sphere of `f(direction)` (solid angle measure).

@@ -10,7 +10,10 @@
 //!   reconstructed functions (phase in the tangent frame, absorption per lobe, transmittance,
 //!   environment), to 1e-10;
 //! - with V = 1 and a constant environment the shading is the environment times the lobe
-//!   albedo, integrated independently of the tables; the directional light is eq. 9 exactly.
+//!   albedo, integrated independently of the tables; the directional light is eq. 9 exactly;
+//! - Gerard's 8-bit layout decodes within half a code; the table over absorption holds
+//!   Gerard's exponents in closed form for his own lobes; the traced shading is the `f32`
+//!   shading bit for bit.
 
 use core::f64::consts::PI;
 use glam::{DMat3, DVec3};
@@ -20,8 +23,9 @@ use hairmath::bcsdf::{Bcsdf, Marschner2003, Query};
 use hairmath::geometry::{local_directions, V3};
 use hairmath::lut::SharedTable;
 use hairmath::models::gerard_sh::{
-    local_of_tangent_frame, phase_index, project_phase, tangent_frame, viewer_at, GerardSh,
-    Lighting, PhaseQuadrature, ShadedPoint,
+    local_of_tangent_frame, phase_index, project_phase, tangent_frame, trace_shade, viewer_at,
+    AbsorbingPhaseTable, GerardSh, Lighting, PhaseQuadrature, PhaseTable, PhaseTextureRgba8,
+    ShadedPoint, MAX_TABULATED_SIGMA_A,
 };
 use hairmath::models::{gerard_attenuation, Gerard, GerardLobe, GERARD_K_TRT, GERARD_K_TT};
 use hairmath::params::{LobeShift, LobeWidth, MarschnerLobes, RefractiveIndex};
@@ -277,7 +281,7 @@ fn the_triple_product_equals_quadrature_of_the_reconstructed_product() {
         let s = wo.dot(frame[2]);
         let lobes: Vec<Vec<f64>> = (0..3)
             .map(|lobe| {
-                let table: &SharedTable<1, 15> = shade.phase().lobe(lobe).unwrap();
+                let table: &SharedTable<1, 15> = shade.phase().lobes().unwrap().lobe(lobe).unwrap();
                 let stored = table.lookup_f64([s]);
                 let mut full = vec![0.0; 25];
                 for l in 0..=4 {
@@ -481,4 +485,145 @@ fn f32_shading_follows_f64() {
             );
         }
     }
+}
+
+#[test]
+fn gerards_rgba8_layout_decodes_within_half_a_code() {
+    let q = PhaseQuadrature { n_z: 48, n_phi: 96 };
+    let tables = PhaseTable::<3>::bake(&clear_gerard(-5.0, 7.5), 128, &q).unwrap();
+    let texture = tables.to_rgba8();
+    assert_eq!((texture.width, texture.texels.len()), (128, 128 * 3));
+    // The lobes are even in phi: Y_1-1's channel holds 0, exactly.
+    assert!(texture.texels.iter().all(|t| t[1] == 128));
+    let decoded = PhaseTable::<3>::from_rgba8(&texture).unwrap();
+    for lobe in 0..3 {
+        let a = tables.lobe(lobe).unwrap().table().data();
+        let b = decoded.lobe(lobe).unwrap().table().data();
+        let scales = texture.scales[lobe];
+        for (k, (x, y)) in a.iter().zip(b).enumerate() {
+            let scale = scales[[0, 2, 3][k % 3]];
+            assert!(
+                (x - y).abs() <= scale / 254.0 * 1.0001,
+                "lobe {lobe} value {k}: {x} {y}"
+            );
+        }
+        // Each channel's largest value is stored at code 1 or 255: exact up to rounding.
+        assert!(scales.iter().any(|&s| s > 0.0));
+    }
+    let broken = |f: fn(&mut PhaseTextureRgba8)| {
+        let mut t = texture.clone();
+        f(&mut t);
+        PhaseTable::<3>::from_rgba8(&t).is_err()
+    };
+    assert!(broken(|t| t.width = 1));
+    assert!(broken(|t| {
+        t.texels.pop();
+    }));
+    assert!(broken(|t| t.scales[1][2] = -1.0));
+    assert!(broken(|t| t.scales[0][0] = f32::NAN));
+}
+
+#[test]
+fn the_table_over_absorption_follows_gerards_exponents_in_closed_form() {
+    // Gerard's own lobes attenuate by exactly e^(-k sigma_a) = u^k: the table over u must hold
+    // a_R + a_TT u^k_TT + a_TRT u^k_TRT, up to linear interpolation in u.
+    let q = PhaseQuadrature { n_z: 48, n_phi: 96 };
+    let model_at = |sigma_a: f64| {
+        let source = marschner(-5.0, 7.5, [sigma_a; 3]);
+        Gerard::new(&source, GerardLobe::Printed, GERARD_K_TT, GERARD_K_TRT)
+    };
+    let (samples, transmissions) = (9, 33);
+    let table = AbsorbingPhaseTable::<6>::bake(model_at, [samples, transmissions], &q).unwrap();
+    let lobes = PhaseTable::<6>::bake(&clear_gerard(-5.0, 7.5), samples, &q).unwrap();
+    for k in 0..samples {
+        let s = -1.0 + 2.0 * k as f64 / (samples - 1) as f64;
+        let a: Vec<[f64; 6]> = (0..3)
+            .map(|p| lobes.lobe(p).unwrap().lookup_f64([s]))
+            .collect();
+        let largest = max_abs(a.iter().flatten().copied());
+        for (sigma_a, tolerance) in [(0.0f64, 1e-6), (0.3, 4e-3), (1.1, 4e-3), (4.0, 4e-3)] {
+            let u = (-sigma_a).exp();
+            let got = table.table().lookup_f64([s, u]);
+            for c in 0..6 {
+                let expected = a[0][c]
+                    + a[1][c] * gerard_attenuation(GERARD_K_TT, sigma_a)
+                    + a[2][c] * gerard_attenuation(GERARD_K_TRT, sigma_a);
+                assert!(
+                    (got[c] - expected).abs() <= tolerance * largest,
+                    "s {s} sigma_a {sigma_a} coefficient {c}: {} {expected}",
+                    got[c]
+                );
+            }
+        }
+    }
+    let row = vec![0.0f32; samples * 6];
+    assert!(AbsorbingPhaseTable::<6>::from_rows(samples, vec![row.clone()]).is_err());
+    assert!(
+        AbsorbingPhaseTable::<6>::from_rows(samples, vec![row.clone(), row[1..].to_vec()]).is_err()
+    );
+    assert!(AbsorbingPhaseTable::<6>::from_rows(samples, vec![row.clone(), row]).is_ok());
+    assert!(AbsorbingPhaseTable::<4>::bake(model_at, [9, 9], &q).is_err());
+    assert_eq!(
+        AbsorbingPhaseTable::<6>::sigma_a_of_row(0, 5),
+        MAX_TABULATED_SIGMA_A
+    );
+    assert_eq!(AbsorbingPhaseTable::<6>::sigma_a_of_row(4, 5), 0.0);
+}
+
+#[test]
+fn the_traced_shading_is_the_f32_shading_bit_for_bit() {
+    let shade = shading(0.1);
+    let environment = [
+        coefficients(3, 1.3),
+        coefficients(3, 2.1),
+        coefficients(3, 0.4),
+    ];
+    let graph = trace_shade(&shade, 2, &environment).unwrap();
+    let lanes = shade.instantiate::<f32>();
+    let e32 = environment
+        .clone()
+        .map(|c| c.iter().map(|&x| x as f32).collect::<Vec<f32>>());
+    let v32: Vec<f32> = coefficients(2, 0.7).iter().map(|&x| x as f32).collect();
+    for (tangent, wo) in configurations() {
+        let f = |v: V3<f64>| V3::new(v.x as f32, v.y as f32, v.z as f32);
+        let (tangent, wo, light) = (f(tangent), f(wo), V3::new(0.0f32, 0.6, 0.8));
+        let expected = lanes
+            .shade(
+                &ShadedPoint {
+                    tangent,
+                    wo,
+                    transmittance: &v32,
+                },
+                &Lighting {
+                    environment: [&e32[0], &e32[1], &e32[2]],
+                    light,
+                    light_radiance: [1.0, 2.0, 0.5],
+                },
+            )
+            .unwrap();
+        let mut inputs = vec![
+            tangent.x, tangent.y, tangent.z, wo.x, wo.y, wo.z, light.x, light.y, light.z, 1.0, 2.0,
+            0.5,
+        ];
+        inputs.extend_from_slice(&v32);
+        let got = graph.eval_f32(&inputs);
+        assert_eq!(
+            got.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+            expected.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+            "{got:?} {expected:?}"
+        );
+    }
+    assert!(trace_shade(&shade, 6, &environment).is_err());
+    let uneven = [
+        coefficients(3, 1.0),
+        coefficients(2, 1.0),
+        coefficients(3, 1.0),
+    ];
+    assert!(trace_shade(&shade, 2, &uneven).is_err());
+    let too_many = [
+        coefficients(6, 1.0),
+        coefficients(6, 1.0),
+        coefficients(6, 1.0),
+    ];
+    assert!(trace_shade(&shade, 2, &too_many).is_err());
 }

@@ -216,6 +216,7 @@ fn cylinder(base: [f32; 3], axis: [f32; 3], length: f32, radius: f32) -> Option<
         radius,
         transmission: 0.5,
         strand: 0,
+        start: 0,
     })
 }
 

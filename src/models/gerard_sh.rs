@@ -34,7 +34,9 @@ use crate::error::ParamError;
 use crate::geometry::{fibre_frame, V3};
 use crate::lut::{Axis, SharedTable, Table};
 use crate::quadrature::gauss_legendre;
-use crate::real::Real;
+use crate::real::{
+    trace_with, ArgType, Graph, Parameter, Real, ResultType, Signature, StructType, Traced,
+};
 use crate::sh::{
     eval_sh_f64_into, eval_sh_into, lmax_of, rotate_with_blocks, rotation_blocks, ProductPlan,
 };
@@ -223,11 +225,7 @@ impl<const C: usize> PhaseTable<C> {
         samples: usize,
         quadrature: &PhaseQuadrature,
     ) -> Result<Self, ParamError> {
-        let lmax = Self::LMAX.ok_or(ParamError::OutOfRange {
-            name: "phase table channels",
-            value: C as f64,
-            allowed: "must be (L + 1)(L + 2) / 2 for some L in [0, 4]: 1, 3, 6, 10 or 15",
-        })?;
+        let lmax = phase_lmax::<C>()?;
         ParamError::check("samples", samples as f64, "must be in [2, 4096]", |n| {
             (2.0..=4096.0).contains(&n)
         })?;
@@ -244,18 +242,10 @@ impl<const C: usize> PhaseTable<C> {
                 }
             }
         }
-        let names: Vec<String> = (0..=lmax)
-            .flat_map(|l| (0..=l).map(move |m| format!("a_{l}_{m}")))
-            .collect();
         let tables = data
             .into_iter()
-            .map(|values| {
-                let axis = Axis::new("sin_theta_r", -1.0, 1.0, samples)?;
-                let table = Table::new(vec![axis], names.clone(), values)?;
-                SharedTable::new(table)
-            })
-            .collect::<Result<Vec<_>, _>>()
-            .unwrap_or_else(|e| unreachable!("the phase tables' shape is valid: {e}"));
+            .map(|values| phase_lobe_table(samples, lmax, values))
+            .collect();
         Ok(Self { lobes: tables })
     }
 
@@ -267,6 +257,269 @@ impl<const C: usize> PhaseTable<C> {
     /// The number of lobes.
     pub fn lobe_count(&self) -> usize {
         self.lobes.len()
+    }
+}
+
+/// Gerard's own storage of the `l <= 1` phase tables (his section 3: "a 128x3 8bits
+/// normalized RGBA texture, parametrized by `(sin(theta_r) + 1)/2` in x"): one row per lobe
+/// (R, TT, TRT), one texel per sample of `sin theta_r`, the four channels the band-1
+/// coefficients in the crate's order `Y_00, Y_1-1, Y_10, Y_11` (the second is 0 for every lobe
+/// here, which is even in `phi`: module documentation).
+///
+/// A coefficient `a` of row `p`, channel `c` is stored in offset binary,
+/// `t = 128 + round(127 a / scale_pc)` with `scale_pc` the largest `|a|` of that row and
+/// channel, so that 0 is exact and the codes are 1 to 255; [`PhaseTable::from_rgba8`] decodes
+/// `a = scale_pc (t - 128) / 127` (a renderer passes the twelve scales as uniforms).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhaseTextureRgba8 {
+    /// Texels per row: the table's samples of `sin theta_r` (128 in Gerard's layout).
+    pub width: usize,
+    /// Row by row, texel by texel.
+    pub texels: Vec<[u8; 4]>,
+    /// Per row, the scale of each channel's codes (0 for a channel that is 0 throughout).
+    pub scales: Vec<[f32; 4]>,
+}
+
+/// Which of Gerard's RGBA channels holds a phase table's `m >= 0` coefficient (`Y_00`,
+/// `Y_10`, `Y_11`): the crate's index `l (l + 1) + m`.
+const RGBA8_CHANNELS: [usize; 3] = [0, 2, 3];
+
+impl PhaseTable<3> {
+    /// The tables in Gerard's 8-bit layout ([`PhaseTextureRgba8`]).
+    pub fn to_rgba8(&self) -> PhaseTextureRgba8 {
+        let width = self.lobes.first().map_or(0, |t| t.table().axes()[0].size());
+        let mut texels = Vec::with_capacity(width * self.lobes.len());
+        let mut scales = Vec::with_capacity(self.lobes.len());
+        for lobe in &self.lobes {
+            let data = lobe.table().data();
+            let mut scale = [0f32; 4];
+            for sample in data.chunks_exact(3) {
+                for (&channel, &a) in RGBA8_CHANNELS.iter().zip(sample) {
+                    scale[channel] = scale[channel].max(a.abs());
+                }
+            }
+            for sample in data.chunks_exact(3) {
+                let mut texel = [128u8; 4];
+                for (&channel, &a) in RGBA8_CHANNELS.iter().zip(sample) {
+                    if scale[channel] > 0.0 {
+                        let code = 128.0 + (127.0 * a / scale[channel]).round();
+                        texel[channel] = code.clamp(1.0, 255.0) as u8;
+                    }
+                }
+                texels.push(texel);
+            }
+            scales.push(scale);
+        }
+        PhaseTextureRgba8 {
+            width,
+            texels,
+            scales,
+        }
+    }
+
+    /// The tables that `texture` stores, decoded (what a shader reads from it).
+    ///
+    /// # Errors
+    /// [`ParamError::OutOfRange`] if the width is outside `[2, 4096]`, the texels are not
+    /// `width` per scale, or a scale is negative or not finite.
+    pub fn from_rgba8(texture: &PhaseTextureRgba8) -> Result<Self, ParamError> {
+        let width = texture.width;
+        ParamError::check("width", width as f64, "must be in [2, 4096]", |n| {
+            (2.0..=4096.0).contains(&n)
+        })?;
+        ParamError::check(
+            "texels",
+            texture.texels.len() as f64,
+            "must be width x the number of scales",
+            |n| n == (width * texture.scales.len()) as f64,
+        )?;
+        let lobes = texture
+            .scales
+            .iter()
+            .zip(texture.texels.chunks_exact(width))
+            .map(|(scale, row)| {
+                for &s in scale {
+                    ParamError::check("scale", f64::from(s), "must be finite and >= 0", |s| {
+                        s >= 0.0
+                    })?;
+                }
+                let decode = |t: u8, c: usize| scale[c] * (f32::from(t) - 128.0) / 127.0;
+                let values = row
+                    .iter()
+                    .flat_map(|texel| RGBA8_CHANNELS.map(|c| decode(texel[c], c)))
+                    .collect();
+                Ok(phase_lobe_table(width, 1, values))
+            })
+            .collect::<Result<Vec<_>, ParamError>>()?;
+        Ok(Self { lobes })
+    }
+}
+
+/// The table of one lobe's coefficients over `sin theta_r` (`samples` of them in `[-1, 1]`),
+/// bands `l <= lmax`, `values` sample-major.
+fn phase_lobe_table<const C: usize>(
+    samples: usize,
+    lmax: usize,
+    values: Vec<f32>,
+) -> SharedTable<1, C> {
+    Axis::new("sin_theta_r", -1.0, 1.0, samples)
+        .and_then(|axis| Table::new(vec![axis], phase_channel_names(lmax), values))
+        .and_then(SharedTable::new)
+        .unwrap_or_else(|e| unreachable!("the phase tables' shape is valid: {e}"))
+}
+
+/// The channel names of a phase table of bands `l <= lmax`: `a_l_m`, `m >= 0`.
+fn phase_channel_names(lmax: usize) -> Vec<String> {
+    (0..=lmax)
+        .flat_map(|l| (0..=l).map(move |m| format!("a_{l}_{m}")))
+        .collect()
+}
+
+/// The largest absorption an [`AbsorbingPhaseTable`] bakes, at transmission `e^(-sigma_a)`
+/// 0 (per unit fibre radius; `e^(-2 x 30)`, the least attenuation of a transmitted path, is
+/// below f32's resolution of 1).
+pub const MAX_TABULATED_SIGMA_A: f64 = 30.0;
+
+/// The phase function's coefficients summed over the lobes, tabulated over `sin theta_r` and
+/// the transmission `u = e^(-sigma_a)` of one channel's absorption: absorption handled
+/// without eq. 14's exponents (the lobes' own attenuation, which depends on the offset and
+/// the angles, is projected), at the cost of a 2D table. One fetch per colour channel at
+/// `(sin theta_r, e^(-sigma_a))`; `u` in `[0, 1]` covers every `sigma_a >= 0`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AbsorbingPhaseTable<const C: usize> {
+    table: SharedTable<2, C>,
+}
+
+impl<const C: usize> AbsorbingPhaseTable<C> {
+    /// Bakes the table of the models `model_at(sigma_a)` (the same hair with the absorption
+    /// `sigma_a` in every channel; their first channel is projected) at `samples` values of
+    /// `sin theta_r` and `transmissions` values of `u`, each spaced evenly over its range
+    /// (`u = 0` baked at [`MAX_TABULATED_SIGMA_A`]).
+    ///
+    /// # Errors
+    /// [`ParamError::OutOfRange`] if `C` is not a count of [`PhaseTable::LMAX`], a count is
+    /// outside `[2, 4096]`, or as `model_at` and [`project_phase`].
+    pub fn bake<B: Bcsdf<f64>>(
+        model_at: impl Fn(f64) -> Result<B, ParamError>,
+        [samples, transmissions]: [usize; 2],
+        quadrature: &PhaseQuadrature,
+    ) -> Result<Self, ParamError> {
+        check_counts(samples, transmissions)?;
+        let rows = (0..transmissions)
+            .map(|j| {
+                Self::bake_row(
+                    &model_at(Self::sigma_a_of_row(j, transmissions))?,
+                    samples,
+                    quadrature,
+                )
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Self::from_rows(samples, rows)
+    }
+
+    /// The absorption of row `j` of `transmissions`: `-ln u` at `u = j / (transmissions - 1)`,
+    /// at most [`MAX_TABULATED_SIGMA_A`].
+    pub fn sigma_a_of_row(j: usize, transmissions: usize) -> f64 {
+        let u = j as f64 / (transmissions.max(2) - 1) as f64;
+        match u > 0.0 {
+            true => (-u.ln()).min(MAX_TABULATED_SIGMA_A),
+            false => MAX_TABULATED_SIGMA_A,
+        }
+    }
+
+    /// One row of the table: the lobes' summed coefficients of `model` (first channel) at
+    /// `samples` values of `sin theta_r` (rows are independent: a caller may bake them in
+    /// parallel and join them with [`AbsorbingPhaseTable::from_rows`]).
+    ///
+    /// # Errors
+    /// As [`AbsorbingPhaseTable::bake`].
+    pub fn bake_row(
+        model: &impl Bcsdf<f64>,
+        samples: usize,
+        quadrature: &PhaseQuadrature,
+    ) -> Result<Vec<f32>, ParamError> {
+        let lmax = phase_lmax::<C>()?;
+        check_counts(samples, 2)?;
+        let mut values = Vec::with_capacity(samples * C);
+        for k in 0..samples {
+            let s = -1.0 + 2.0 * k as f64 / (samples - 1) as f64;
+            let (lobes, _) = project_phase(model, s, lmax, quadrature)?;
+            for l in 0..=lmax {
+                for m in 0..=l {
+                    let sum: f64 = lobes.iter().map(|c| c[l * (l + 1) + m]).sum();
+                    values.push(sum as f32);
+                }
+            }
+        }
+        Ok(values)
+    }
+
+    /// The table of `rows` ([`AbsorbingPhaseTable::bake_row`], in order of
+    /// [`AbsorbingPhaseTable::sigma_a_of_row`]) of `samples` values each.
+    ///
+    /// # Errors
+    /// [`ParamError::OutOfRange`] if a count is outside `[2, 4096]` or a row is not `samples`
+    /// values of `C` coefficients.
+    pub fn from_rows(samples: usize, rows: Vec<Vec<f32>>) -> Result<Self, ParamError> {
+        let lmax = phase_lmax::<C>()?;
+        check_counts(samples, rows.len())?;
+        ParamError::check(
+            "row length",
+            0.0,
+            "must be samples x C in every row",
+            |_| rows.iter().all(|r| r.len() == samples * C),
+        )?;
+        let transmissions = rows.len();
+        let values = rows.concat();
+        let table = Axis::new("sin_theta_r", -1.0, 1.0, samples)
+            .and_then(|s| Ok([s, Axis::new("transmission", 0.0, 1.0, transmissions)?]))
+            .and_then(|axes| Table::new(axes.to_vec(), phase_channel_names(lmax), values))
+            .and_then(SharedTable::new)
+            .unwrap_or_else(|e| unreachable!("the phase table's shape is valid: {e}"));
+        Ok(Self { table })
+    }
+
+    /// The table: axes `sin_theta_r`, `transmission`.
+    pub fn table(&self) -> &SharedTable<2, C> {
+        &self.table
+    }
+}
+
+/// Checks the sample counts of an [`AbsorbingPhaseTable`].
+fn check_counts(samples: usize, transmissions: usize) -> Result<(), ParamError> {
+    for (name, n) in [("samples", samples), ("transmissions", transmissions)] {
+        ParamError::check(name, n as f64, "must be in [2, 4096]", |n| {
+            (2.0..=4096.0).contains(&n)
+        })?;
+    }
+    Ok(())
+}
+
+/// The band limit of phase tables of `C` channels.
+fn phase_lmax<const C: usize>() -> Result<usize, ParamError> {
+    PhaseTable::<C>::LMAX.ok_or(ParamError::OutOfRange {
+        name: "phase table channels",
+        value: C as f64,
+        allowed: "must be (L + 1)(L + 2) / 2 for some L in [0, 4]: 1, 3, 6, 10 or 15",
+    })
+}
+
+/// Where [`GerardSh`] takes the phase function's coefficients from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PhaseTables<const C: usize> {
+    /// Per lobe without absorption, each attenuated per channel by `e^(-k sigma_a)` (eq. 15).
+    Lobes(PhaseTable<C>),
+    /// Summed over the lobes, with the absorption tabulated ([`AbsorbingPhaseTable`]).
+    OverAbsorption(AbsorbingPhaseTable<C>),
+}
+
+impl<const C: usize> PhaseTables<C> {
+    /// The per-lobe tables, if the absorption is eq. 15's.
+    pub fn lobes(&self) -> Option<&PhaseTable<C>> {
+        match self {
+            PhaseTables::Lobes(tables) => Some(tables),
+            PhaseTables::OverAbsorption(_) => None,
+        }
     }
 }
 
@@ -291,7 +544,7 @@ impl<const C: usize> PhaseTable<C> {
 pub struct GerardSh<R, const C: usize> {
     model: Gerard<R>,
     uniforms: GerardUniforms<R>,
-    phase: PhaseTable<C>,
+    phase: PhaseTables<C>,
     bias: R,
 }
 
@@ -350,7 +603,7 @@ impl<const C: usize> GerardSh<f64, C> {
         Ok(Self {
             uniforms: model.uniforms(),
             model,
-            phase,
+            phase: PhaseTables::Lobes(phase),
             bias,
         })
     }
@@ -375,8 +628,14 @@ impl<const C: usize> GerardSh<f64, C> {
 
 impl<R, const C: usize> GerardSh<R, C> {
     /// The phase tables.
-    pub fn phase(&self) -> &PhaseTable<C> {
+    pub fn phase(&self) -> &PhaseTables<C> {
         &self.phase
+    }
+
+    /// The same shading with the phase function's coefficients from `phase` (the direct
+    /// light's `S` stays Gerard's eq. 4 to 8).
+    pub fn with_phase(self, phase: PhaseTables<C>) -> Self {
+        Self { phase, ..self }
     }
 }
 
@@ -391,11 +650,7 @@ impl<R: Real, const C: usize> GerardSh<R, C> {
         point: &ShadedPoint<R>,
         lighting: &Lighting<R>,
     ) -> Result<[R; 3], ParamError> {
-        let lmax = PhaseTable::<C>::LMAX.ok_or(ParamError::OutOfRange {
-            name: "phase table channels",
-            value: C as f64,
-            allowed: "must be (L + 1)(L + 2) / 2 for some L in [0, 4]",
-        })?;
+        let lmax = phase_lmax::<C>()?;
         let lengths = [
             point.transmittance,
             lighting.environment[0],
@@ -439,31 +694,40 @@ impl<R: Real, const C: usize> GerardSh<R, C> {
             ]
         });
         let blocks = rotation_blocks(&rotation, lmax);
-        let lobes: Vec<Vec<R>> = (0..self.phase.lobe_count())
-            .map(|lobe| {
-                let table = self.phase.lobe(lobe).expect("a lobe of the tables");
-                let stored = R::sample_table(table, [s]);
-                let full = expand_phase(&stored, lmax);
-                let mut world = vec![R::c(0.0); full.len()];
-                rotate_with_blocks(&blocks, &full, &mut world);
-                world
-            })
-            .collect();
+        let rotate = |stored: &[R]| {
+            let full = expand_phase(stored, lmax);
+            let mut world = vec![R::c(0.0); full.len()];
+            rotate_with_blocks(&blocks, &full, &mut world);
+            world
+        };
         let u = &self.uniforms;
-        core::array::from_fn(|channel| {
-            let sigma = u.sigma_a[channel];
-            let weights = [
-                R::c(1.0),
-                gerard_attenuation(u.k_tt, sigma),
-                gerard_attenuation(u.k_trt, sigma),
-            ];
-            (0..lobes[0].len())
-                .map(|k| {
-                    let terms = lobes.iter().zip(weights).map(|(lobe, w)| lobe[k] * w);
-                    terms.reduce(|a, b| a + b).expect("three lobes")
+        match &self.phase {
+            PhaseTables::Lobes(tables) => {
+                let lobes: Vec<Vec<R>> = tables
+                    .lobes
+                    .iter()
+                    .map(|table| rotate(&R::sample_table(table, [s])))
+                    .collect();
+                core::array::from_fn(|channel| {
+                    let sigma = u.sigma_a[channel];
+                    let weights = [
+                        R::c(1.0),
+                        gerard_attenuation(u.k_tt, sigma),
+                        gerard_attenuation(u.k_trt, sigma),
+                    ];
+                    (0..lobes[0].len())
+                        .map(|k| {
+                            let terms = lobes.iter().zip(weights).map(|(lobe, w)| lobe[k] * w);
+                            terms.reduce(|a, b| a + b).expect("three lobes")
+                        })
+                        .collect()
                 })
-                .collect()
-        })
+            }
+            PhaseTables::OverAbsorption(table) => core::array::from_fn(|channel| {
+                let transmission = (-u.sigma_a[channel]).exp();
+                rotate(&R::sample_table(table.table(), [s, transmission]))
+            }),
+        }
     }
 
     /// The directional light's contribution per channel (eq. 9 and 10).
@@ -523,4 +787,108 @@ pub fn tangent_frame<R: Real>(tangent: V3<R>, wo: V3<R>) -> [V3<R>; 3] {
         pick(normal.z, across.z * scale),
     );
     [x, t.cross(x), t]
+}
+
+/// The name of [`trace_shade`]'s function in shader code.
+pub const SHADE_FUNCTION: &str = "gerard_sh_shade";
+
+/// The struct type of `n` SH coefficients as shader arguments: `ShCoefficients{n}` with fields
+/// `c0, c1, ...` (index `l (l + 1) + m`).
+fn sh_struct(n: usize) -> ArgType {
+    ArgType::Struct(StructType {
+        name: format!("ShCoefficients{n}"),
+        fields: (0..n).map(|k| (format!("c{k}"), ArgType::Scalar)).collect(),
+    })
+}
+
+/// Gerard's shading ([`GerardSh::shade`] in `f32`) traced for the shader emitter:
+///
+/// ```wgsl
+/// fn gerard_sh_shade(tangent: vec3<f32>, wo: vec3<f32>, light: vec3<f32>,
+///                    light_radiance: vec3<f32>, transmittance: ShCoefficients{(L_V + 1)^2})
+///     -> vec3<f32>
+/// ```
+///
+/// with the phase tables as textures, the SH vectors and their rotation as shader arithmetic,
+/// and the environment's coefficients `environment` (per channel, bands `l <= L_E`) as a
+/// module-scope constant `environment` (a renderer's uniform). Its [`crate::real::Graph`]
+/// gives the operation counts of the cost column.
+///
+/// # Errors
+/// [`ParamError::OutOfRange`] if `v_lmax` or the environment's band limit exceeds 5 or the
+/// environment's channels differ in length, or as [`GerardSh::shade`].
+pub fn trace_shade<const C: usize>(
+    shading: &GerardSh<f64, C>,
+    v_lmax: usize,
+    environment: &[Vec<f64>; 3],
+) -> Result<Graph, ParamError> {
+    ParamError::check("v_lmax", v_lmax as f64, "must be at most 5", |l| l <= 5.0)?;
+    let n_env = environment[0].len();
+    ParamError::check(
+        "environment coefficients",
+        n_env as f64,
+        "must be (L + 1)^2, L <= 5, the same in every channel",
+        |n| lmax_of(n_env).is_ok_and(|l| l <= 5) && environment.iter().all(|c| c.len() as f64 == n),
+    )?;
+    let n_v = (v_lmax + 1) * (v_lmax + 1);
+    let values: Vec<f32> = environment.iter().flatten().map(|&v| v as f32).collect();
+    let channel = sh_struct(n_env);
+    let signature = Signature {
+        parameters: vec![
+            Parameter::argument("tangent", ArgType::Vec3),
+            Parameter::argument("wo", ArgType::Vec3),
+            Parameter::argument("light", ArgType::Vec3),
+            Parameter::argument("light_radiance", ArgType::Vec3),
+            Parameter::argument("transmittance", sh_struct(n_v)),
+            Parameter {
+                name: "environment".into(),
+                ty: ArgType::Struct(StructType {
+                    name: "Environment".into(),
+                    fields: ["r", "g", "b"]
+                        .map(|c| (c.to_string(), channel.clone()))
+                        .to_vec(),
+                }),
+                constant: Some(values),
+            },
+        ],
+        result: ResultType::Vec3,
+    };
+    // Checked once outside the trace, so that the traced closure cannot fail.
+    let check_point = vec![0.0; n_v];
+    let check_environment = environment.each_ref().map(|c| c.as_slice());
+    shading.shade(
+        &ShadedPoint {
+            tangent: V3::new(0.0, 0.0, 1.0),
+            wo: V3::new(1.0, 0.0, 0.0),
+            transmittance: &check_point,
+        },
+        &Lighting {
+            environment: check_environment,
+            light: V3::new(0.0, 1.0, 0.0),
+            light_radiance: [1.0; 3],
+        },
+    )?;
+    Ok(trace_with(signature, |x| {
+        let shading = shading.instantiate::<Traced>();
+        let v3 = |k: usize| V3::new(x[k], x[k + 1], x[k + 2]);
+        let (transmittance, environment) = x[12..].split_at(n_v);
+        let point = ShadedPoint {
+            tangent: v3(0),
+            wo: v3(3),
+            transmittance,
+        };
+        let lighting = Lighting {
+            environment: [
+                &environment[..n_env],
+                &environment[n_env..2 * n_env],
+                &environment[2 * n_env..],
+            ],
+            light: v3(6),
+            light_radiance: [x[9], x[10], x[11]],
+        };
+        shading
+            .shade(&point, &lighting)
+            .unwrap_or_else(|e| unreachable!("checked before the trace: {e}"))
+            .to_vec()
+    }))
 }

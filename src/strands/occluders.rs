@@ -61,6 +61,8 @@ pub struct Cylinder {
     pub transmission: f32,
     /// The strand it belongs to.
     pub strand: u32,
+    /// The index of the segment's first point (its second is the next).
+    pub start: u32,
 }
 
 impl Cylinder {
@@ -68,8 +70,8 @@ impl Cylinder {
     /// or of a strand's points), with the given opacity.
     ///
     /// # Panics
-    /// If the segment's points are not points of `strands`, or its strand index exceeds
-    /// `u32::MAX` (no `.hair` file or groom has that many strands).
+    /// If the segment's points are not points of `strands`, or its strand or point index
+    /// exceeds `u32::MAX` (no `.hair` file or groom has that many).
     pub fn of_segment(strands: &Strands, segment: Segment, opacity: Opacity) -> Self {
         let (i, j) = (segment.start, segment.start + 1);
         let (base, end) = (strands.points()[i], strands.points()[j]);
@@ -86,6 +88,7 @@ impl Cylinder {
             radius: 0.25 * (strands.thickness().at(i) + strands.thickness().at(j)),
             transmission,
             strand: u32::try_from(segment.strand).expect("strand counts fit in u32"),
+            start: u32::try_from(segment.start).expect("point counts fit in u32"),
         }
     }
 
@@ -207,6 +210,16 @@ struct Aabb {
     max: Vec3A,
 }
 
+/// The reciprocals of `direction`'s components for the slab test, components below 1e-20 in
+/// magnitude taken as 1e-20 so that the test never multiplies 0 by infinity.
+fn safe_inverse(direction: Vec3) -> Vec3A {
+    Vec3A::from(direction)
+        .abs()
+        .max(Vec3A::splat(1e-20))
+        .copysign(direction.into())
+        .recip()
+}
+
 impl Aabb {
     const EMPTY: Aabb = Aabb {
         min: Vec3A::splat(f32::INFINITY),
@@ -310,13 +323,7 @@ impl Occluders {
     /// change the crossings; a non-finite one gives meaningless ones). Returns 0 as soon as the
     /// product falls below [`NEGLIGIBLE_TRANSMITTANCE`] (an absolute error below that).
     pub fn transmittance(&self, origin: Vec3, direction: Vec3, own_strand: Option<u32>) -> f32 {
-        // Components below 1e-20 in magnitude become 1e-20, so that the slab test never
-        // multiplies 0 by infinity.
-        let inverse = Vec3A::from(direction)
-            .abs()
-            .max(Vec3A::splat(1e-20))
-            .copysign(direction.into())
-            .recip();
+        let inverse = safe_inverse(direction);
         let ray_origin = Vec3A::from(origin);
         let own = own_strand.unwrap_or(u32::MAX);
         let mut v = 1.0_f32;
@@ -338,6 +345,30 @@ impl Occluders {
         v
     }
 
+    /// The first cylinder the ray `origin + t direction` enters at `t > 0` and that `t` (the
+    /// ray starting inside a cylinder enters it at `t = 0`), or `None` if it crosses none.
+    pub fn first_hit(&self, origin: Vec3, direction: Vec3) -> Option<(f32, &Cylinder)> {
+        let inverse = safe_inverse(direction);
+        let ray_origin = Vec3A::from(origin);
+        let mut best: Option<(f32, &Cylinder)> = None;
+        self.visit(
+            |bounds| bounds.hit_by(ray_origin, inverse),
+            |leaf| {
+                for cylinder in leaf {
+                    let Some((lo, hi)) = cylinder.ray_interval(origin, direction) else {
+                        continue;
+                    };
+                    let entry = lo.max(0.0);
+                    if hi > 0.0 && best.is_none_or(|(t, _)| entry < t) {
+                        best = Some((entry, cylinder));
+                    }
+                }
+                ControlFlow::Continue(())
+            },
+        );
+        best
+    }
+
     /// Appends to `out` every cylinder not of strand `own_strand` whose surface comes within
     /// `radius` of `point` (its axis within `radius` plus its own radius).
     pub fn near(&self, point: Vec3, radius: f32, own_strand: Option<u32>, out: &mut Vec<Cylinder>) {
@@ -356,10 +387,10 @@ impl Occluders {
 
     /// Walks the hierarchy depth first into every node whose box `enters` accepts, calling
     /// `leaf` with each leaf's cylinders until it breaks.
-    fn visit(
-        &self,
+    fn visit<'a>(
+        &'a self,
         enters: impl Fn(&Aabb) -> bool,
-        mut leaf: impl FnMut(&[Cylinder]) -> ControlFlow<()>,
+        mut leaf: impl FnMut(&'a [Cylinder]) -> ControlFlow<()>,
     ) {
         let mut stack = [0u32; STACK];
         let mut depth = 1;

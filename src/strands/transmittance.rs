@@ -231,19 +231,7 @@ pub fn compare(
     })
 }
 
-/// `n` directions of the spherical Fibonacci set: `z_k = 1 - (2k + 1) / n`, azimuth `k` times
-/// the golden angle `pi (3 - sqrt 5)`; each stands for the solid angle `4 pi / n`.
-pub fn fibonacci_directions(n: usize) -> Vec<DVec3> {
-    let golden_angle = core::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|k| {
-            let z = 1.0 - (2 * k + 1) as f64 / n as f64;
-            let s = (1.0 - z * z).max(0.0).sqrt();
-            let (sin, cos) = (golden_angle * k as f64).sin_cos();
-            DVec3::new(s * cos, s * sin, z)
-        })
-        .collect()
-}
+pub use crate::quadrature::fibonacci_directions;
 
 /// The SH projection of `V` at the vertices `vertices` of `strands`; `progress(done, total)`
 /// is called as vertices complete (from any thread).

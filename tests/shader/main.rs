@@ -10,6 +10,7 @@
 
 mod committed;
 mod error_bound;
+mod gerard_sh;
 mod gpu;
 mod models;
 #[cfg(feature = "plan")]

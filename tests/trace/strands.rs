@@ -25,6 +25,7 @@ fn configurations() -> Vec<(Cylinder, Vec3)> {
         radius: 0.1,
         transmission: 0.5,
         strand: 1,
+        start: 0,
     };
     vec![
         (cylinder(Vec3::new(-0.25, 0.0, 1.0), Vec3::X), Vec3::ZERO),

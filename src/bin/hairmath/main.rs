@@ -26,6 +26,7 @@ mod lut;
 mod models;
 mod plan;
 mod plots;
+mod render;
 mod report;
 mod sh;
 mod shader;
@@ -165,6 +166,18 @@ enum Command {
     /// as a medium; --exact casts rays through a bounding-volume hierarchy (the reference, about
     /// a hundred times slower). A progress bar shows on a terminal's stderr.
     Bake(strands::BakeArgs),
+    /// Render a `.hair` file with Gerard's spherical-harmonic shading and against the
+    /// reference (Gerard's "ground truth": single scattering, the exact transmittance by rays
+    /// and the Chiang far field, integrated over the sphere per pixel), lit by a procedural
+    /// sky and one directional light; also Kajiya-Kay at its best-fit inputs given the same
+    /// inputs as Gerard's. Orthographic, looking along -Z.
+    ///
+    /// Writes DIR/reference.png, DIR/gerard.png, DIR/kajiya_kay.png, DIR/difference.png
+    /// (|gerard - reference|, four times brighter), DIR/side_by_side.png and DIR/errors.json
+    /// (rmse and relative_error of Gerard's image against the reference, the same under
+    /// kajiya_kay, and the reference's convergence against half its directions). A progress
+    /// bar shows on a terminal's stderr.
+    RenderGerard(render::RenderArgs),
 }
 
 /// Why a subcommand failed.
@@ -315,6 +328,7 @@ fn main() -> ExitCode {
         Command::Plan(args) => plan::run(args),
         Command::Groom(args) => strands::run_groom(args),
         Command::Bake(args) => strands::run_bake(args),
+        Command::RenderGerard(args) => render::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

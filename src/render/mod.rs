@@ -1,0 +1,40 @@
+//! Images of grooms, for measuring shading techniques against a reference (Gerard's section 4:
+//! "a path-traced reference render using the single scattering approximation"): an
+//! orthographic camera, the first strand each pixel's ray meets, a procedural sky and a
+//! directional light, and three ways to shade the hit point ([`shading`]):
+//!
+//! - the reference, Gerard's "ground truth" (single scattering): the integral over the sphere
+//!   of `L_env(w) V(x, w) S(w, wo)` with the exact transmittance (rays through the strands,
+//!   [`crate::strands::occluders`]) and the Chiang far field as `S`, by a Fibonacci rule of
+//!   equal weights, plus the light's `L V(x, wl) S(wl, wo)`;
+//! - Gerard's shading ([`crate::models::gerard_sh::GerardSh`]) with the transmittance's baked
+//!   coefficients interpolated along the segment (as a rasteriser interpolates vertex
+//!   attributes) and the sky projected to spherical harmonics;
+//! - a classic model (Kajiya-Kay) given the same inputs as Gerard's: `V` from the same
+//!   coefficients, the sky itself integrated by the reference's rule.
+//!
+//! [`compare_gerard`] renders the three and measures the two approximations against the
+//! reference.
+//!
+//! Conventions: the camera looks along -Z, so every hit is seen from `wo = +Z`; the shading
+//! point is the point of the strand's axis nearest to the ray's entry into its cylinder (the
+//! points a transmittance bake samples are on the axis); the first hit is shaded opaque (no
+//! transparency compositing), the same for every technique, so that the images differ only by
+//! the shading.
+
+mod camera;
+mod comparison;
+mod image;
+mod lighting;
+pub mod shading;
+
+pub use camera::{first_hits, Camera, Hit};
+pub use comparison::{
+    compare_gerard, gerard_graph, gerard_ops, gerard_source_mapped, Approximations,
+    GerardComparison, GerardConfig, GerardRender, GerardScene, PhaseAbsorption, RenderSettings,
+    Stage,
+};
+#[cfg(feature = "fit")]
+pub use comparison::{gerard_source_best_fit, kajiya_kay_best_fit};
+pub use image::{image_error, render, Image, ImageError};
+pub use lighting::{DirectionalLight, Sky};
