@@ -24,6 +24,7 @@ use toml::de::{DeInteger, DeTable, DeValue};
 use toml::Spanned;
 
 use crate::absorption::Absorption;
+use crate::csv::format_number;
 use crate::params::{AzimuthalRoughness, CuticleTilt, LongitudinalRoughness, RefractiveIndex};
 
 /// What the planner minimises.
@@ -86,9 +87,9 @@ pub enum HairKey {
     Eumelanin,
     /// The pheomelanin concentration (`pheomelanin`, >= 0, default 0).
     Pheomelanin,
-    /// The longitudinal roughness (`beta_m`, in (0, 1]).
+    /// The longitudinal roughness (`beta_m`, in [1e-16, 1]).
     BetaM,
-    /// The azimuthal roughness (`beta_n`, in (0, 1]).
+    /// The azimuthal roughness (`beta_n`, in [1e-16, 1]).
     BetaN,
     /// The cuticle tilt in degrees (`alpha_deg`, |alpha| < 90, default 2).
     AlphaDeg,
@@ -147,8 +148,9 @@ impl HairKey {
         };
         checked.map_err(|e| match self {
             HairKey::AlphaDeg => format!(
-                "{value} is not allowed: alpha_deg is the cuticle tilt in degrees, finite with \
-                 |alpha_deg| < 90 ({e})"
+                "{} is not allowed: alpha_deg is the cuticle tilt in degrees, finite with \
+                 |alpha_deg| < 90 ({e})",
+                format_number(value)
             ),
             _ => e.to_string(),
         })
@@ -544,7 +546,8 @@ fn budget(field: &Field<'_>) -> Result<f64, SceneError> {
         Ok(budget)
     } else {
         Err(field.at_value(format!(
-            "{budget} is not allowed: the budget is a finite error E > 0"
+            "{} is not allowed: the budget is a finite error E > 0",
+            format_number(budget)
         )))
     }
 }
@@ -606,7 +609,11 @@ fn param_range(field: &Field<'_>, key: HairKey) -> Result<ParamRange, SceneError
     }
     if range.min() > range.max() {
         let (min, max) = (range.min(), range.max());
-        let message = format!("min {min} > max {max}: a range is [min, max] with min <= max");
+        let message = format!(
+            "min {} > max {}: a range is [min, max] with min <= max",
+            format_number(min),
+            format_number(max)
+        );
         return Err(field.at_value(message));
     }
     Ok(range)
