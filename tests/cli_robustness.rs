@@ -305,6 +305,8 @@ fn unwritable_files_are_named() {
 /// out).
 #[test]
 fn endless_lines_are_refused() {
+    let o = run(&["plan", "/dev/zero"], b"");
+    assert_fails_with(&o, &["/dev/zero:0: ", "longer than 1048576 bytes"]);
     let zeros = vec![0_u8; 8 << 20];
     let o = run(&["wigner3j"], &zeros);
     assert_fails_with(&o, &["line 1: the line is longer than 1048576 bytes"]);

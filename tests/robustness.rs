@@ -21,6 +21,7 @@ use hairmath::params::{
     AzimuthalRoughness, HairParams, LongitudinalRoughness, MarschnerLobes, RefractiveIndex,
     MIN_BETA,
 };
+use hairmath::plan::{Scene, MAX_SCENE_BYTES};
 use hairmath::quadrature::gauss_legendre;
 use hairmath::registry::MODELS;
 use hairmath::sh::{index_to_lm, project, sh_index, GauntTensor, MAX_PROJECT_LMAX};
@@ -207,6 +208,15 @@ fn uncapped_work_is_refused_at_once_or_fast() {
         bake(&nguyen, &[5000, 5000]),
         Err(LutError::TooMuchWork { .. })
     ));
+
+    // A scene file is read up to its limit, not without end.
+    let (result, took) = timed(|| Scene::read(std::path::Path::new("/dev/zero")));
+    let message = result.unwrap_err().to_string();
+    assert!(
+        message.contains(&format!("longer than {MAX_SCENE_BYTES} bytes")),
+        "{message}"
+    );
+    assert!(took < Duration::from_secs(1), "{took:?}");
 
     let (result, took) = timed(|| project(200, |_| 1.0));
     assert!(result.is_err() && took < Duration::from_millis(100));

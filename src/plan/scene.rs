@@ -269,23 +269,37 @@ impl Scene {
     }
 
     /// Reads and parses the file at `path` (an unreadable file is a [`SceneError`] too, at
-    /// line 0).
+    /// line 0). At most [`MAX_SCENE_BYTES`] are read, so that a path such as `/dev/zero`
+    /// cannot make it read without end.
     ///
     /// # Errors
-    /// As [`Scene::parse`], and a file that cannot be read as UTF-8 text.
+    /// As [`Scene::parse`], and a file that cannot be read as UTF-8 text or is longer than
+    /// [`MAX_SCENE_BYTES`].
     pub fn read(path: &Path) -> Result<Scene, SceneError> {
+        use std::io::Read;
         let file = path.display().to_string();
-        match std::fs::read_to_string(path) {
-            Ok(text) => Scene::parse(&text, &file),
-            Err(e) => Err(SceneError {
-                file,
-                line: 0,
-                key: String::new(),
-                message: format!("cannot read the scene file: {e}"),
-            }),
+        let unreadable = |message: String| SceneError {
+            file: file.clone(),
+            line: 0,
+            key: String::new(),
+            message,
+        };
+        let mut text = String::new();
+        std::fs::File::open(path)
+            .and_then(|f| f.take(MAX_SCENE_BYTES as u64 + 1).read_to_string(&mut text))
+            .map_err(|e| unreadable(format!("cannot read the scene file: {e}")))?;
+        if text.len() > MAX_SCENE_BYTES {
+            return Err(unreadable(format!(
+                "the scene file is longer than {MAX_SCENE_BYTES} bytes (the limit of a scene \
+                 file; the example scenes have a few hundred)"
+            )));
         }
+        Scene::parse(&text, &file)
     }
 }
+
+/// The longest scene file [`Scene::read`] accepts, in bytes (1 MiB).
+pub const MAX_SCENE_BYTES: usize = 1 << 20;
 
 /// A scene file that cannot be used: where, which key, what is wrong and what is allowed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
