@@ -409,10 +409,10 @@ mod tests {
                 max_x = max_x.max((x - xr).abs());
                 max_w = max_w.max(((w - wr) / wr).abs());
             }
-            // The recurrence's own weights carry O(n eps) rounding (about 1e-13 at n = 1000),
-            // so the weights agree to that, the nodes to 2 ulp.
+            // The recurrence's own weights carry O(n eps) rounding (2.3e-13 measured at
+            // n = 1001, 1.4e-12 at 4000), so the weights agree to that, the nodes to 2 ulp.
             assert!(
-                max_x <= 4.5e-16 && max_w <= 1e-12,
+                max_x <= 4.5e-16 && max_w <= 1e-15 * n as f64,
                 "n {n}: {max_x:e} {max_w:e}"
             );
             let sum: f64 = fast.iter().map(|&(_, w)| w).sum();
@@ -421,7 +421,9 @@ mod tests {
             assert!((x4 - 0.4).abs() < 1e-13, "n {n}: {x4}");
         }
         // Gamma(1000) / Gamma(1000.5) to 30 digits (mpmath): 0.0316267296956575176880099065058.
-        assert!((gamma_ratio(1000.0) / 0.031_626_729_695_657_52 - 1.0).abs() < 4e-16);
+        // exp(-(ln(z) / 2 + ...)) at an exponent of 3.45 rounds to about 4 eps relative.
+        let error = (gamma_ratio(1000.0) / 0.031_626_729_695_657_52 - 1.0).abs();
+        assert!(error < 1e-15, "{error:e}");
     }
 
     #[test]
