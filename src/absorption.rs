@@ -14,6 +14,10 @@ pub const EUMELANIN_SIGMA_A: Rgb = [0.419, 0.697, 1.37];
 /// Pheomelanin absorption per unit concentration and radius (same source).
 pub const PHEOMELANIN_SIGMA_A: Rgb = [0.187, 0.4, 1.05];
 
+/// The largest melanin concentration [`Absorption::from_melanin`] accepts: 1e300, far above
+/// hair's (0 to 8) and below where sigma_a would overflow.
+pub const MAX_MELANIN: f64 = 1e300;
+
 /// Absorption sigma_a per unit fibre radius, validated: every channel finite and >= 0. The one
 /// type every model, baker and fit takes for absorption, whichever way it was specified
 /// (directly, from melanin, or from a colour).
@@ -50,14 +54,17 @@ impl Absorption {
 
     /// sigma_a from melanin concentrations: `eu * EUMELANIN_SIGMA_A + pheo *
     /// PHEOMELANIN_SIGMA_A` (Chiang et al. 2016, section 4.2). Typical human hair has `eu` in
-    /// [0, 8].
+    /// [0, 8]; each concentration may be at most [`MAX_MELANIN`] (1e300), where sigma_a stays
+    /// finite (`f64::MAX / 2.42`, the largest channel's coefficients summed, is 7.4e307).
     ///
     /// # Errors
-    /// A concentration that is negative or not finite.
+    /// [`ParamError::OutOfRange`] naming the concentration that is negative, not finite or
+    /// above [`MAX_MELANIN`].
     pub fn from_melanin(eumelanin: f64, pheomelanin: f64) -> Result<Self, ParamError> {
-        let allowed = "melanin concentrations must be finite and >= 0";
-        let eu = ParamError::check("eumelanin", eumelanin, allowed, |v| v >= 0.0)?;
-        let ph = ParamError::check("pheomelanin", pheomelanin, allowed, |v| v >= 0.0)?;
+        let allowed = "melanin concentrations must be in [0, 1e300] (sigma_a must be finite)";
+        let ok = |v: f64| (0.0..=MAX_MELANIN).contains(&v);
+        let eu = ParamError::check("eumelanin", eumelanin, allowed, ok)?;
+        let ph = ParamError::check("pheomelanin", pheomelanin, allowed, ok)?;
         Self::new(sigma_a_of_melanin(eu, ph))
     }
 
@@ -122,7 +129,7 @@ pub const MIN_COLOR: f64 = 1e-30;
 /// Chiang et al. 2016's inversion (section 4.2, eq. 9; pbrt-v4 `SigmaAFromReflectance`),
 /// `sigma_a = (ln c / D(beta_n))^2` with `D` the polynomial of [`Absorption::from_color`].
 ///
-/// Domain: `color` in (0, 1] and `beta_n` in (0, 1], which [`Absorption::from_color`]
+/// Domain: `color` in (0, 1] and `beta_n` in [1e-16, 1], which [`Absorption::from_color`]
 /// validates. Shader code cannot reject a value, so here a channel above 1 counts as 1 (no
 /// absorption) and one at or below 0 (or NaN) as [`MIN_COLOR`]; the result is then finite and
 /// non-negative for every `beta_n` in [0, 1] (the caller clamps beta_n).
@@ -141,8 +148,10 @@ pub fn log_color_of_sigma_a<R: Real>(sigma_a: R, beta_n: R) -> R {
 /// sigma_a per linear RGB channel of melanin concentrations:
 /// `eu * EUMELANIN_SIGMA_A + pheo * PHEOMELANIN_SIGMA_A` (Chiang et al. 2016, section 4.2).
 ///
-/// Domain: concentrations >= 0, which [`Absorption::from_melanin`] validates; shader code
-/// cannot reject a value, so here a negative concentration (or NaN) counts as 0.
+/// Domain: concentrations in [0, [`MAX_MELANIN`]], which [`Absorption::from_melanin`]
+/// validates; shader code cannot reject a value, so here a negative concentration (or NaN)
+/// counts as 0, and one so large that a channel overflows gives an infinite sigma_a (no light
+/// passes through the fibre).
 pub fn sigma_a_of_melanin<R: Real>(eumelanin: R, pheomelanin: R) -> [R; 3] {
     let (eu, ph) = (eumelanin.max(R::c(0.0)), pheomelanin.max(R::c(0.0)));
     core::array::from_fn(|c| eu * R::c(EUMELANIN_SIGMA_A[c]) + ph * R::c(PHEOMELANIN_SIGMA_A[c]))

@@ -11,8 +11,14 @@ use crate::real::{safe_sqrt, Real, ShaderFunction, TINY};
 /// `R = (r_par^2 + r_perp^2) / 2` with `r_par = (eta cos_i - cos_t) / (eta cos_i + cos_t)`,
 /// `r_perp = (cos_i - eta cos_t) / (cos_i + eta cos_t)` and Snell's law for `cos_t`, evaluated
 /// by [`fresnel_from_outside`] on the side the light comes from.
-/// Requires `eta > 0`; `cos_i` is clamped to [-1, 1]. Returns a value in [0, 1].
+/// Finite `cos_i` is clamped to [-1, 1]; for a finite `eta > 0` the result is in [0, 1]. A
+/// NaN or infinite argument, or `eta <= 0`, gives NaN rather than a number (a reference
+/// function: clamping would have turned a NaN `cos_i` into -1).
 pub fn fresnel_dielectric<R: Real>(cos_i: R, eta: R) -> R {
+    // 0 for finite arguments, NaN for a NaN or infinite one: x - x is the NaN probe that
+    // every instantiation (shader code included) can compute.
+    #[allow(clippy::eq_op)]
+    let invalid = (cos_i - cos_i) + (eta - eta);
     let cos_i = cos_i.clamp(R::c(-1.0), R::c(1.0));
     let inside = cos_i.lt(R::c(0.0));
     let inv_eta = R::c(1.0) / eta;
@@ -21,7 +27,11 @@ pub fn fresnel_dielectric<R: Real>(cos_i: R, eta: R) -> R {
         R::select(inside, eta, inv_eta),
     );
     let (r, sin2_t) = reflectance(cos_i.abs(), n, inv_n);
-    R::select(sin2_t.lt(R::c(1.0)), r, R::c(1.0))
+    let r = R::select(sin2_t.lt(R::c(1.0)), r, R::c(1.0)) + invalid;
+    // 0 / 0 is NaN: an index at or below 0 is no index.
+    #[allow(clippy::eq_op)]
+    let no_index = invalid / invalid;
+    R::select(R::c(0.0).lt(eta), r, no_index)
 }
 
 /// [`fresnel_dielectric`] for light arriving from the outside of a fibre with `eta >= 1`, the
@@ -105,6 +115,22 @@ mod tests {
                 "reciprocal at normal"
             );
         }
+    }
+
+    #[test]
+    fn non_finite_arguments_and_non_positive_indices_give_nan() {
+        let eta = 1.55_f64;
+        for bad in [
+            fresnel_dielectric(f64::NAN, eta),
+            fresnel_dielectric(f64::INFINITY, eta),
+            fresnel_dielectric(0.5, f64::NAN),
+            fresnel_dielectric(0.5, 0.0),
+            fresnel_dielectric(0.5, -1.5),
+            fresnel_dielectric(0.5, f64::INFINITY),
+        ] {
+            assert!(bad.is_nan(), "{bad}");
+        }
+        assert_eq!(fresnel_dielectric(2.0, eta), fresnel_dielectric(1.0, eta));
     }
 
     #[test]

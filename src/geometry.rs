@@ -204,14 +204,16 @@ pub struct FibreFrame {
 }
 
 impl FibreFrame {
-    /// The frame of a tangent, which need not be unit length. The normal is chosen
-    /// continuously by Duff et al. 2017 ("Building an Orthonormal Basis, Revisited").
+    /// The frame of a tangent, which need not be unit length: any finite non-zero vector,
+    /// however long or short (it is divided by its largest component first, so that its
+    /// squared length neither overflows nor underflows). The normal is chosen continuously by
+    /// Duff et al. 2017 ("Building an Orthonormal Basis, Revisited").
     ///
     /// # Errors
-    /// [`ParamError::BadVector`] if the tangent is zero or not finite.
+    /// [`ParamError::BadVector`] if the tangent is zero or has a non-finite component.
     pub fn new(tangent: glam::DVec3) -> Result<Self, ParamError> {
-        let len = tangent.length();
-        if !(len.is_finite() && len > 0.0) {
+        let largest = tangent.abs().max_element();
+        if !(tangent.is_finite() && largest > 0.0) {
             return Err(ParamError::BadVector {
                 name: "tangent",
                 x: tangent.x,
@@ -220,7 +222,8 @@ impl FibreFrame {
                 allowed: "the fibre tangent must be finite and non-zero",
             });
         }
-        let [t, n, b] = fibre_frame(V3::new(tangent.x, tangent.y, tangent.z));
+        let t = tangent / largest;
+        let [t, n, b] = fibre_frame(V3::new(t.x, t.y, t.z));
         let dvec = |v: V3<f64>| glam::DVec3::new(v.x, v.y, v.z);
         Ok(FibreFrame {
             tangent: dvec(t),
@@ -250,7 +253,9 @@ impl FibreFrame {
 /// Revisited", listing 3), branch-free: with `s = sign(t_z)` (+1 at 0), `a = -1 / (s + t_z)`,
 /// `b = t_x t_y a`, `normal = (1 + s t_x^2 a, s b, -s t_x)` and `binormal = (b, s + t_y^2 a,
 /// -t_y)`. The tangent's length is floored at 1e-30 so that a zero tangent gives a finite
-/// (meaningless) frame; [`FibreFrame::new`] rejects it.
+/// (meaningless) frame; [`FibreFrame::new`] rejects it, and takes tangents of any finite
+/// length (here the squared length must be finite: components below about 1e154 in `f64`,
+/// 1.8e19 in `f32`).
 pub fn fibre_frame<R: Real>(tangent: V3<R>) -> [V3<R>; 3] {
     const FUNCTION: ShaderFunction = crate::shader_function!(
         fibre_frame,

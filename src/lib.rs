@@ -4,6 +4,7 @@
 pub mod absorption;
 pub mod azimuthal;
 pub mod bcsdf;
+pub mod csv;
 pub mod diagnostics;
 pub mod error;
 pub mod fit;

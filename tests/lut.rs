@@ -138,7 +138,10 @@ fn lookup_clamps_to_the_edges() {
     assert_eq!(at(7.0, 2.0), at(1.0, 1.0));
     assert_eq!(at(1.0, 1.0), 11.0);
     assert_eq!(at(f32::INFINITY, f32::NEG_INFINITY), 1.0);
-    assert_eq!(at(f32::NAN, 0.5), 5.0);
+    // A NaN coordinate is refused by the checked lookup (issue 17, item 6: it gave the axis'
+    // minimum, a number from no input).
+    let nan = t.lookup(&[f32::NAN, 0.5]).unwrap_err().to_string();
+    assert!(nan.contains("axis x is NaN"), "{nan}");
     // The generic weights: the last cell is used at max, with f = 1.
     assert_eq!(axis_cell(1.0f64, 0.0, 1.0, 4), (2.0, 1.0));
     assert_eq!(axis_cell(-3.0f32, 0.0, 1.0, 4), (0.0, 0.0));

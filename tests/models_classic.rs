@@ -570,7 +570,7 @@ proptest! {
     /// Every valid hair maps to valid inputs of every model, all present.
     #[test]
     fn every_hair_maps_to_valid_inputs(
-        beta_m in prop_oneof![Just(1e-300), Just(1e-3), Just(1.0), 1e-3..=1.0_f64],
+        beta_m in prop_oneof![Just(hairmath::params::MIN_BETA), Just(1e-3), Just(1.0), 1e-3..=1.0_f64],
         beta_n in prop_oneof![Just(1e-3), Just(1.0), 1e-3..=1.0_f64],
         alpha in prop_oneof![Just(0.0), Just(FRAC_PI_2 - 1e-4), Just(1e-4 - FRAC_PI_2), Just(FRAC_PI_2 / 2.0), -1.5..=1.5_f64],
         eta in prop_oneof![Just(1.0001), Just(3.0), 1.0001..=3.0_f64],

@@ -495,7 +495,7 @@ proptest! {
 
     #[test]
     fn the_mapping_builds_a_model_for_every_hair(
-        beta_m in prop_oneof![Just(1e-300), Just(1.0), 1e-4_f64..=1.0],
+        beta_m in prop_oneof![Just(hairmath::params::MIN_BETA), Just(1.0), 1e-4_f64..=1.0],
         beta_n in beta_n(),
         sigma_a in [
             prop_oneof![Just(0.0), Just(1e300), 0.0_f64..=20.0].boxed(),

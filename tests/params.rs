@@ -55,7 +55,7 @@ fn an_invalid_beta_n_gives_one_message_wherever_it_enters() {
     ];
     assert_eq!(
         errors[0],
-        "beta_n = 1.5 is not allowed: the azimuthal roughness must be in (0, 1]"
+        "beta_n = 1.5 is not allowed: the azimuthal roughness must be in [1e-16, 1]"
     );
     assert_one_message(&errors);
 }

@@ -293,7 +293,7 @@ beta_n = { varying = [0.6, 0.3] }
 
 #[test]
 fn values_outside_their_domains_are_errors_at_the_value() {
-    let roughness = "the longitudinal roughness must be in (0, 1]";
+    let roughness = "the longitudinal roughness must be in [1e-16, 1]";
     let zero = r#"budget = 0.05
 [hair]
 eumelanin = 1.0
@@ -348,7 +348,7 @@ beta_m = 0.3
 beta_n = 0.3
 eumelanin = -1
 "#;
-    let melanin = "eumelanin = -1 is not allowed: melanin concentrations must be finite and >= 0";
+    let melanin = "eumelanin = -1 is not allowed: melanin concentrations must be in [0, 1e300] (sigma_a must be finite)";
     check(eumelanin, "hair.eumelanin", 5, melanin);
     let pheomelanin = r#"budget = 0.05
 [hair]
@@ -357,7 +357,7 @@ pheomelanin = { varying = [-1, 1] }
 beta_m = 0.3
 beta_n = 0.3
 "#;
-    check(pheomelanin, "hair.pheomelanin", 4, "finite and >= 0");
+    check(pheomelanin, "hair.pheomelanin", 4, "must be in [0, 1e300]");
 }
 
 #[test]

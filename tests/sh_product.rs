@@ -109,7 +109,7 @@ fn real_table(rule: &Rule, n_bands: usize) -> Vec<Vec<f64>> {
         .map(|&(x, phi, _)| {
             (0..n_bands * n_bands)
                 .map(|i| {
-                    let (l, m) = index_to_lm(i);
+                    let (l, m) = index_to_lm(i).unwrap();
                     y_real(l as i32, m, x, phi)
                 })
                 .collect()
@@ -181,9 +181,9 @@ fn real_gaunt_tensor_matches_quadrature_entry_by_entry() {
                     (t - q).abs() < 2e-14,
                     "T[{i} {j} {k}] = {t} vs quadrature {q}"
                 );
-                let (l1, m1) = index_to_lm(i);
-                let (l2, m2) = index_to_lm(j);
-                let (l3, m3) = index_to_lm(k);
+                let (l1, m1) = index_to_lm(i).unwrap();
+                let (l2, m2) = index_to_lm(j).unwrap();
+                let (l3, m3) = index_to_lm(k).unwrap();
                 assert_eq!(t, gaunt_real(l1, m1, l2, m2, l3, m3).unwrap());
                 if t != 0.0 {
                     nonzero += 1;

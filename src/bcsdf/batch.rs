@@ -93,6 +93,88 @@ pub struct BatchLengthError {
     pub out: usize,
 }
 
+/// Why a batch was refused ([`eval_batch`], [`pdf_batch`]); `out` is then untouched.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum BatchError {
+    /// The slices differ in length.
+    #[error(transparent)]
+    Length(#[from] BatchLengthError),
+    /// A direction that is not a unit vector within [`super::UNIT_TOLERANCE`] (zero, infinite
+    /// and NaN components included).
+    #[error(
+        "sample {index}: {name} = ({x}, {y}, {z}) must be a unit vector (length 1 within \
+         {tolerance}) with finite components"
+    )]
+    Direction {
+        /// The sample's index.
+        index: usize,
+        /// `wi` or `wo`.
+        name: &'static str,
+        /// Components as given.
+        x: f32,
+        /// Components as given.
+        y: f32,
+        /// Components as given.
+        z: f32,
+        /// [`super::UNIT_TOLERANCE`].
+        tolerance: f64,
+    },
+    /// An offset that is NaN (finite or infinite ones are clamped to [-1, 1]).
+    #[error("sample {index}: h = {h} must be a number (offsets outside [-1, 1] are clamped)")]
+    Offset {
+        /// The sample's index.
+        index: usize,
+        /// The offset as given.
+        h: f32,
+    },
+}
+
+/// Whether `w` is a unit vector within [`super::UNIT_TOLERANCE`] (false for non-finite
+/// components: the comparison fails for NaN).
+#[inline(always)]
+fn is_unit(w: &[f32; 3]) -> bool {
+    let length = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+    (length - 1.0).abs() <= super::UNIT_TOLERANCE as f32
+}
+
+/// [`BatchError`] for the first sample with a direction that is not unit or a NaN offset. A
+/// branch-free pass over every sample first (it vectorises: a few percent of an evaluation),
+/// then, only if one is bad, a search for it.
+fn check_samples(wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]) -> Result<(), BatchError> {
+    let sample_ok =
+        |((a, b), h): ((&[f32; 3], &[f32; 3]), &f32)| is_unit(a) & is_unit(b) & !h.is_nan();
+    let all_ok = wi
+        .iter()
+        .zip(wo)
+        .zip(h)
+        .fold(true, |ok, sample| ok & sample_ok(sample));
+    if all_ok {
+        return Ok(());
+    }
+    let index = wi
+        .iter()
+        .zip(wo)
+        .zip(h)
+        .position(|sample| !sample_ok(sample))
+        .unwrap_or(0);
+    let direction = |name, w: [f32; 3]| BatchError::Direction {
+        index,
+        name,
+        x: w[0],
+        y: w[1],
+        z: w[2],
+        tolerance: super::UNIT_TOLERANCE,
+    };
+    Err(if !is_unit(&wi[index]) {
+        direction("wi", wi[index])
+    } else if !is_unit(&wo[index]) {
+        direction("wo", wo[index])
+    } else {
+        BatchError::Offset { index, h: h[index] }
+    })
+}
+
 /// The padding sample: wi = wo = (0, 1, 0) (perpendicular to the fibre), h = 0.
 const PAD_DIR: [f32; 3] = [0.0, 1.0, 0.0];
 const PAD_H: f32 = 0.0;
@@ -154,18 +236,22 @@ fn for_each_chunk<L: BatchLanes, T: Copy>(
 /// paths, instantiated with the lane type `L`; results agree with the `f32` instantiation up
 /// to the accuracy of `wide`'s transcendental approximations (see the module documentation).
 /// Conventions (local frame, tangent +X, unit directions, `h` in [-1, 1] clamped) are those of
-/// [`Query`]; far-field models ignore `h`.
+/// [`Query`]; far-field models ignore `h`. Every sample is checked first (directions unit
+/// within [`super::UNIT_TOLERANCE`] and evaluated as given, `h` not NaN).
 ///
 /// # Errors
-/// [`BatchLengthError`] if `wi`, `wo`, `h` and `out` differ in length; `out` is then untouched.
+/// [`BatchError::Length`] if `wi`, `wo`, `h` and `out` differ in length,
+/// [`BatchError::Direction`] or [`BatchError::Offset`] naming the first bad sample; `out` is
+/// then untouched.
 pub fn eval_batch<L: BatchLanes, M: Bcsdf<L>>(
     model: &M,
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],
     h: &[f32],
     out: &mut [[f32; 3]],
-) -> Result<(), BatchLengthError> {
+) -> Result<(), BatchError> {
     check(wi.len(), wo.len(), h.len(), out.len())?;
+    check_samples(wi, wo, h)?;
     for_each_chunk(wi, wo, h, out, |wi, wo, h, out| {
         let mut rgb = [[0.0_f32; MAX_LANES]; 3];
         for (lanes, value) in rgb.iter_mut().zip(model.eval(&Query::new(wi, wo, h))) {
@@ -192,7 +278,7 @@ pub trait BatchEval {
         wo: &[[f32; 3]],
         h: &[f32],
         out: &mut [[f32; 3]],
-    ) -> Result<(), BatchLengthError>;
+    ) -> Result<(), BatchError>;
 }
 
 impl<M: Bcsdf<BatchReal>> BatchEval for M {
@@ -202,24 +288,26 @@ impl<M: Bcsdf<BatchReal>> BatchEval for M {
         wo: &[[f32; 3]],
         h: &[f32],
         out: &mut [[f32; 3]],
-    ) -> Result<(), BatchLengthError> {
+    ) -> Result<(), BatchError> {
         eval_batch::<BatchReal, M>(self, wi, wo, h, out)
     }
 }
 
 /// [`SampledBcsdf::pdf`] of `wi[k]` given `wo[k]`, `h[k]` into `out[k]`, `L::LANES` samples at
-/// a time (the same generic code as the scalar path, instantiated with `L`).
+/// a time (the same generic code as the scalar path, instantiated with `L`), every sample
+/// checked first as in [`eval_batch`].
 ///
 /// # Errors
-/// [`BatchLengthError`] if `wi`, `wo`, `h` and `out` differ in length; `out` is then untouched.
+/// As [`eval_batch`]; `out` is then untouched.
 pub fn pdf_batch<L: BatchLanes, M: SampledBcsdf<L>>(
     model: &M,
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],
     h: &[f32],
     out: &mut [f32],
-) -> Result<(), BatchLengthError> {
+) -> Result<(), BatchError> {
     check(wi.len(), wo.len(), h.len(), out.len())?;
+    check_samples(wi, wo, h)?;
     for_each_chunk(wi, wo, h, out, |wi, wo, h, out| {
         let n = out.len().min(L::LANES);
         model.pdf(&Query::new(wi, wo, h)).store(&mut out[..n]);
@@ -327,17 +415,55 @@ mod tests {
         let err = eval_batch(&hair, &d, &d[..2], &[0.0; 3], &mut out).unwrap_err();
         assert_eq!(
             err,
-            BatchLengthError {
+            BatchError::Length(BatchLengthError {
                 wi: 3,
                 wo: 2,
                 h: 3,
                 out: 3
-            }
+            })
         );
         assert_eq!(out, [[7.0; 3]; 3]);
         let mut p = [0.0; 2];
         assert!(pdf_batch(&hair, &d, &d, &[0.0; 3], &mut p).is_err());
         assert!(eval_batch(&hair, &[], &[], &[], &mut []).is_ok());
+    }
+
+    #[test]
+    fn bad_directions_and_nan_offsets_are_typed_errors_naming_the_sample() {
+        let hair = model().instantiate::<f32x8>();
+        let good = [0.0, 0.6, 0.8];
+        for (bad, name) in [
+            ([0.0, 1.2, 1.6], "wi"),
+            ([0.0; 3], "wi"),
+            ([f32::NAN, 0.0, 1.0], "wi"),
+            ([f32::INFINITY, 0.0, 0.0], "wi"),
+        ] {
+            let wi = [good, good, good, bad, good];
+            let mut out = [[7.0; 3]; 5];
+            let err = eval_batch(&hair, &wi, &[good; 5], &[0.0; 5], &mut out).unwrap_err();
+            assert!(
+                matches!(err, BatchError::Direction { index: 3, name: n, .. } if n == name),
+                "{err:?}"
+            );
+            assert_eq!(out, [[7.0; 3]; 5]);
+            let mut p = [7.0; 5];
+            let err = pdf_batch(&hair, &[good; 5], &wi, &[0.0; 5], &mut p).unwrap_err();
+            assert!(matches!(
+                err,
+                BatchError::Direction {
+                    index: 3,
+                    name: "wo",
+                    ..
+                }
+            ));
+            assert_eq!(p, [7.0; 5]);
+        }
+        let mut out = [[0.0; 3]; 2];
+        let err = eval_batch(&hair, &[good; 2], &[good; 2], &[0.0, f32::NAN], &mut out);
+        assert!(matches!(err, Err(BatchError::Offset { index: 1, .. })));
+        // Within the tolerance a direction is evaluated as given; h beyond [-1, 1] is clamped.
+        let nearly = [0.0, 0.6, 0.8005];
+        assert!(eval_batch(&hair, &[nearly; 2], &[good; 2], &[5.0, -1.0], &mut out).is_ok());
     }
 
     /// Measured (100_000 random samples plus 3 x 144 hard cases plus 1_500 grazing / wi = wo /

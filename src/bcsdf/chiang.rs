@@ -45,7 +45,7 @@ use crate::real::{pi, powi, safe_sqrt, wrap_angle, Real, ShaderFunction, INV_TWO
 pub const CHIANG_LOBES: [&str; LOBES] = ["R", "TT", "TRT", "residual"];
 
 /// Longitudinal variance of the R lobe from beta_m (Chiang et al. 2016, eq. 7):
-/// `v = (0.726 b + 0.812 b^2 + 3.7 b^20)^2`, for beta_m in (0, 1].
+/// `v = (0.726 b + 0.812 b^2 + 3.7 b^20)^2`, for beta_m in [1e-16, 1].
 pub fn longitudinal_variance(beta_m: f64) -> f64 {
     variance_of(beta_m)
 }
@@ -57,7 +57,7 @@ pub(crate) fn variance_of<R: Real>(beta_m: R) -> R {
 }
 
 /// Logistic scale from beta_n (Chiang et al. 2016, eq. 8):
-/// `s = sqrt(pi/8) (0.265 b + 1.194 b^2 + 5.372 b^22)`, for beta_n in (0, 1].
+/// `s = sqrt(pi/8) (0.265 b + 1.194 b^2 + 5.372 b^22)`, for beta_n in [1e-16, 1].
 pub fn logistic_scale(beta_n: f64) -> f64 {
     logistic_scale_of(beta_n)
 }
@@ -141,7 +141,7 @@ impl<R: Real> ChiangUniforms<R> {
     /// normalisations, the logistic scale of eq. 8 and its mass, the tilt's sines and cosines
     /// by the double-angle formulas. The one derivation of the uniforms: [`ChiangUniforms::new`]
     /// in `f64` and shader code with varying inputs ([`crate::bcsdf::VaryingInputs`]) use it.
-    /// Domain as [`HairParams`]: beta_m and beta_n in (0, 1], |alpha| < pi/2, eta in (1, 3],
+    /// Domain as [`HairParams`]: beta_m and beta_n in [1e-16, 1], |alpha| < pi/2, eta in (1, 3],
     /// sigma_a >= 0 per unit radius.
     pub(crate) fn derive(beta_m: R, beta_n: R, alpha: R, eta: R, sigma_a: [R; 3]) -> Self {
         let v0 = variance_of(beta_m);
@@ -643,8 +643,8 @@ pub(crate) const HAIR_VARYING: [&str; 8] = [
 
 /// The uniforms of the Chiang models from the values of [`HAIR_INPUTS`] in precision `R`
 /// ([`ChiangUniforms::derive`], a colour inverted at the hair's beta_n), with the shader's
-/// clamps (`crate::bcsdf::varying`'s module documentation): beta_m and beta_n at or below 0
-/// are [`crate::bcsdf::MIN_ROUGHNESS`], above 1 are 1; alpha is clamped to +-pi/2; eta at or
+/// clamps (`crate::bcsdf::varying`'s module documentation): beta_m and beta_n below 1e-16
+/// (or NaN) are [`crate::bcsdf::MIN_ROUGHNESS`], above 1 are 1; alpha is clamped to +-pi/2; eta at or
 /// below 1 is [`crate::bcsdf::MIN_ETA`], above 3 is 3; sigma_a and melanin are at least 0 and
 /// colours in (0, 1].
 pub(crate) fn chiang_uniforms_in<R: Real>(inputs: &InputsIn<R>) -> ChiangUniforms<R> {

@@ -202,14 +202,14 @@ pub const HAIR_INPUTS: [Input; 5] = [
     Input {
         name: "beta_m",
         kind: InputKind::Number,
-        help: "longitudinal roughness beta_m of Chiang et al. 2016, in (0, 1]",
+        help: "longitudinal roughness beta_m of Chiang et al. 2016, in [1e-16, 1]",
         default: None,
         conflicts_with: &[],
     },
     Input {
         name: "beta_n",
         kind: InputKind::Number,
-        help: "azimuthal roughness beta_n of Chiang et al. 2016, in (0, 1]",
+        help: "azimuthal roughness beta_n of Chiang et al. 2016, in [1e-16, 1]",
         default: None,
         conflicts_with: &[],
     },

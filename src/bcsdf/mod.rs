@@ -22,7 +22,9 @@ mod marschner;
 mod model;
 mod varying;
 
-pub use batch::{eval_batch, pdf_batch, BatchEval, BatchLanes, BatchLengthError, BatchReal, LANES};
+pub use batch::{
+    eval_batch, pdf_batch, BatchError, BatchEval, BatchLanes, BatchLengthError, BatchReal, LANES,
+};
 pub use chiang::{
     logistic_scale, longitudinal_variance, AtOffset, AzimuthalFactors, ChiangHair, ChiangUniforms,
     Offsets, OffsetsIn, Outgoing, CHIANG_LOBES,
@@ -40,7 +42,7 @@ pub use marschner::{Marschner2003, COLOR_BETA_N, MARSCHNER_LOBES};
 pub use model::{
     query_of, query_parameters, sum_lobes, trace_eval, trace_eval_with, trace_model, traced_inputs,
     Bcsdf, HairSample, Model, Query, RandomNumbers, SampledBcsdf, UniformBlock, UniformField,
-    UniformValue, UniformsIn,
+    UniformValue, UniformsIn, UNIT_TOLERANCE,
 };
 pub(crate) use varying::{clamp_closed, clamp_open_closed, eta_in, roughness_in, tilt_in};
 pub use varying::{

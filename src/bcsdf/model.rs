@@ -16,6 +16,7 @@
 //! and lobe-energy diagnostics ([`crate::diagnostics`]) and, registered in
 //! [`crate::registry`], the command line's `eval`.
 
+use crate::error::ParamError;
 use crate::geometry::V3;
 use crate::real::{
     trace_with, ArgType, Graph, Parameter, Real, ResultType, Signature, StructType, Traced,
@@ -25,6 +26,13 @@ use crate::real::{
 /// `wi` towards the light, `wo` towards the viewer, both pointing away from the fibre) and the
 /// offset `h` in [-1, 1] across the fibre's width where `wo`'s ray meets it. Far-field models
 /// ignore `h`.
+///
+/// **Validation.** Evaluation is the hot path (and traces to shader code), so [`Query::new`]
+/// checks nothing and [`Bcsdf::eval`] and [`SampledBcsdf::pdf`] take its directions as given:
+/// a direction of length 2 scales S by a model-dependent factor, and a zero, infinite or NaN
+/// one gives meaningless numbers or NaN. Directions from outside a program (a file, a user)
+/// go through [`Query::checked`], which rejects them with a typed error or normalises them;
+/// the batch functions ([`crate::bcsdf::eval_batch`]) check every sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Query<R> {
     /// Direction towards the light.
@@ -35,8 +43,56 @@ pub struct Query<R> {
     pub h: R,
 }
 
+/// Largest deviation of a direction's length from 1 that [`Query::checked`] and the batch
+/// functions accept: `1e-3`, room for directions written with a few digits.
+pub const UNIT_TOLERANCE: f64 = 1e-3;
+
+impl Query<f64> {
+    /// The query of untrusted values: each direction must have finite components and length 1
+    /// within [`UNIT_TOLERANCE`] (it is then normalised, so a direction written as
+    /// `0.6,0.8,0.0005` evaluates as the unit vector), and `h` must be in [-1, 1].
+    ///
+    /// # Errors
+    /// [`ParamError::BadVector`] for a direction with a non-finite component,
+    /// [`ParamError::NotUnit`] for one of another length (zero included), and
+    /// [`ParamError::OutOfRange`] naming `h` outside [-1, 1] (NaN included).
+    pub fn checked(wi: V3<f64>, wo: V3<f64>, h: f64) -> Result<Self, ParamError> {
+        let h = ParamError::check("h", h, "the offset must be in [-1, 1]", |h| {
+            (-1.0..=1.0).contains(&h)
+        })?;
+        Ok(Query::new(unit("wi", wi)?, unit("wo", wo)?, h))
+    }
+}
+
+/// `w` normalised, if its components are finite and its length is 1 within
+/// [`UNIT_TOLERANCE`].
+fn unit(name: &'static str, w: V3<f64>) -> Result<V3<f64>, ParamError> {
+    if ![w.x, w.y, w.z].iter().all(|c| c.is_finite()) {
+        return Err(ParamError::BadVector {
+            name,
+            x: w.x,
+            y: w.y,
+            z: w.z,
+            allowed: "a direction's components must be finite",
+        });
+    }
+    let length = w.dot(w).sqrt();
+    if (length - 1.0).abs() <= UNIT_TOLERANCE {
+        Ok(w.scale(1.0 / length))
+    } else {
+        Err(ParamError::NotUnit {
+            name,
+            x: w.x,
+            y: w.y,
+            z: w.z,
+            length,
+            tolerance: UNIT_TOLERANCE,
+        })
+    }
+}
+
 impl<R: Real> Query<R> {
-    /// The query of a near-field model.
+    /// The query of a near-field model, unchecked (see [`Query`]; [`Query::checked`] validates).
     pub fn new(wi: V3<R>, wo: V3<R>, h: R) -> Self {
         Query { wi, wo, h }
     }

@@ -30,8 +30,8 @@
 //! **Domains.** Validation stays on the `f64` path: the model (and the baked values) are
 //! built from validated inputs. A shader cannot return an error, so where the CPU rejects a
 //! value, [`VaryingInputs::uniforms_in`] clamps it into the domain instead (documented per
-//! model; for the common inputs: a roughness in (0, 1] at or below 0 is [`MIN_ROUGHNESS`], above
-//! 1 is 1; eta at or below 1 is [`MIN_ETA`], above 3 is 3; the tilt is clamped to +-pi/2; a
+//! model; for the common inputs: a roughness in [1e-16, 1] below 1e-16 ([`crate::params::MIN_BETA`])
+//! or NaN is [`MIN_ROUGHNESS`], above 1 is 1; eta at or below 1 is [`MIN_ETA`], above 3 is 3; the tilt is clamped to +-pi/2; a
 //! negative sigma_a or melanin concentration is 0; a colour channel above 1 is 1, at or below
 //! 0 is [`crate::absorption::MIN_COLOR`]). Valid values pass unchanged (so the `f64`
 //! derivation is the model's), and finite arguments give finite values (`tests/shader_varying.rs`
@@ -53,8 +53,8 @@ use crate::real::{
     trace, trace_with, ArgType, Graph, Node, Parameter, Real, ResultType, Signature,
 };
 
-/// The value a roughness in (0, 1] (beta_m, beta_n) takes in shader code where it is at or
-/// below 0 (or NaN): the lowest roughness the crate tests its models at (DESIGN.md, "very low
+/// The value a roughness in [1e-16, 1] (beta_m, beta_n; [`crate::params::MIN_BETA`]) takes in
+/// shader code where it is below 1e-16 (or NaN): the lowest roughness the crate tests its models at (DESIGN.md, "very low
 /// roughness"), where every model stays finite in `f32`.
 pub const MIN_ROUGHNESS: f64 = 0.01;
 
@@ -70,16 +70,24 @@ pub(crate) fn clamp_open_closed<R: Real>(x: R, lo: f64, hi: f64, floor: f64) -> 
     R::select(R::c(lo).lt(x), x.min(R::c(hi)), R::c(floor))
 }
 
+/// `x` in [lo, hi]: a value below `lo` (or NaN) is `floor`, one above `hi` is `hi`; values in
+/// the domain pass unchanged.
+#[inline(always)]
+pub(crate) fn clamp_closed_or<R: Real>(x: R, lo: f64, hi: f64, floor: f64) -> R {
+    R::select(R::c(lo).le(x), x.min(R::c(hi)), R::c(floor))
+}
+
 /// `x` clamped to [lo, hi] (NaN is `lo`); values in the domain pass unchanged.
 #[inline(always)]
 pub(crate) fn clamp_closed<R: Real>(x: R, lo: f64, hi: f64) -> R {
     x.max(R::c(lo)).min(R::c(hi))
 }
 
-/// A roughness in (0, 1] ([`MIN_ROUGHNESS`] at or below 0).
+/// A roughness in [1e-16, 1] ([`MIN_ROUGHNESS`] below [`crate::params::MIN_BETA`] or NaN,
+/// where the model's `f32` arithmetic would overflow).
 #[inline(always)]
 pub(crate) fn roughness_in<R: Real>(x: R) -> R {
-    clamp_open_closed(x, 0.0, 1.0, MIN_ROUGHNESS)
+    clamp_closed_or(x, crate::params::MIN_BETA, 1.0, MIN_ROUGHNESS)
 }
 
 /// An index of refraction in (1, 3] ([`MIN_ETA`] at or below 1).

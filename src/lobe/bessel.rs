@@ -1,7 +1,9 @@
 //! The modified Bessel function I0, in the scaled forms the lobes need: `I0(x) e^-x` split
 //! into a bounded factor and an exponent ([`i0e_split`]), and `log_i0e(x) = ln(I0(x) e^-x)`.
-//! Both are finite and smooth for all x >= 0 (`I0(x) e^-x` behaves like `1 / sqrt(2 pi x)` for
-//! large x), so lobes of variance 1e-4 (arguments up to 1e4) never overflow.
+//! Both are finite and smooth for all finite x >= 0 up to the largest finite value of the
+//! precision (`I0(x) e^-x` behaves like `1 / sqrt(2 pi x)` for large x), so lobes of any
+//! variance the crate accepts (arguments up to about 1e32) never overflow. `+inf` gives the
+//! limits: `log_i0e` is `-inf`, `log_i0` and `i0` are `+inf`.
 //!
 //! Two approximations, chosen by precision ([`Real::DOUBLE`]):
 //! - `f64`: the power series `I0(x) = sum_k (x^2/4)^k / (k!)^2` (42 terms) for x < 20 and
@@ -18,6 +20,9 @@ use crate::real::{horner, horner_named, NamedConstant, Real};
 const SERIES_END: f64 = 20.0;
 const SERIES_TERMS: usize = 42;
 const ASYMPTOTIC_TERMS: usize = 24;
+/// Above this argument `2 pi x` could overflow, so `sqrt(2 pi x)` is formed as
+/// `sqrt(2 pi) sqrt(x)` (below it the one square root of the product is kept).
+const HUGE: f64 = 1e300;
 
 /// Power-series coefficients 1/(k!)^2 of I0 in x^2/4.
 const SERIES: [f64; SERIES_TERMS] = {
@@ -42,10 +47,12 @@ const ASYMPTOTIC: [f64; ASYMPTOTIC_TERMS] = {
 };
 
 /// `I0(x) e^-x` split as `(scale, shift)` with `I0(x) e^-x = scale * e^shift`, `shift <= 0`,
-/// for `x >= 0` (negative arguments are treated as 0). Callers fold `shift` into an exponential
-/// they compute anyway, so the lobes need no logarithm: below the switch point the series gives
+/// for `x >= 0` (negative arguments and NaN are treated as 0: the lobes' hot path, which never
+/// passes them, spends no operation on them). Callers fold `shift` into an exponential they
+/// compute anyway, so the lobes need no logarithm: below the switch point the series gives
 /// `scale = I0(x)`, `shift = -x`; above it the asymptotic form gives `scale = sqrt(x) e^-x I0(x)
-/// / sqrt(x)`, `shift = 0`. Neither part overflows for any finite x.
+/// / sqrt(x)`, `shift = 0`. Neither part overflows for any finite x, and `scale` is positive
+/// for every finite x (it is 0 at `+inf`, the limit).
 #[inline(always)]
 pub fn i0e_split<R: Real>(x: R) -> (R, R) {
     let x = x.max(R::c(0.0));
@@ -68,8 +75,13 @@ fn series_double<R: Real>(x: R) -> (R, R, R) {
     let small = x.min(R::c(SERIES_END));
     let large = x.max(R::c(SERIES_END));
     let near = horner(small * small * R::c(0.25), &SERIES);
-    let far = horner(R::c(0.125) / large, &ASYMPTOTIC)
-        / (R::c(2.0 * core::f64::consts::PI) * large).sqrt();
+    // sqrt(2 pi x), without overflowing 2 pi x for x above f64::MAX / (2 pi).
+    let root = R::select(
+        large.lt(R::c(HUGE)),
+        (R::c(2.0 * core::f64::consts::PI) * large).sqrt(),
+        R::c((2.0 * core::f64::consts::PI).sqrt()) * large.sqrt(),
+    );
+    let far = horner(R::c(0.125) / large, &ASYMPTOTIC) / root;
     (R::c(SERIES_END), near, far)
 }
 
@@ -87,20 +99,36 @@ fn polynomials_single<R: Real>(x: R) -> (R, R, R) {
     (switch, near, far)
 }
 
-/// `ln(I0(x) e^-x)` for `x >= 0` (negative arguments are treated as 0).
+/// `ln(I0(x) e^-x)` for `x >= 0` (negative arguments and NaN are treated as 0): finite for
+/// every finite x (about `-0.5 ln(2 pi x)` for large x: -355.4 at 1e308 in `f64`), `-inf` at
+/// `+inf` (the limit).
 pub fn log_i0e<R: Real>(x: R) -> R {
     let (scale, shift) = i0e_split(x);
     scale.ln() + shift
 }
 
-/// `ln I0(x)` for `x >= 0`.
+/// `ln I0(x)` for `x >= 0` (negative arguments and NaN are treated as 0): finite for every
+/// finite x, `+inf` at `+inf` (the logarithm of the scaled form is taken at the largest finite
+/// value, so that `-inf + inf` never forms).
 pub fn log_i0<R: Real>(x: R) -> R {
-    log_i0e(x) + x.max(R::c(0.0))
+    let x = x.max(R::c(0.0));
+    log_i0e(x.min(R::c(largest_finite::<R>()))) + x
 }
 
-/// `I0(x)` for `|x|` up to about 700 in f64 (it overflows beyond).
+/// `I0(x)` (even in x): finite for `|x|` up to about 713 in `f64` and 91 in `f32`, `+inf`
+/// beyond (the true value overflows), never 0 or NaN for a non-NaN x.
 pub fn i0<R: Real>(x: R) -> R {
     log_i0(x.abs()).exp()
+}
+
+/// The largest finite value of the precision `R` (`f64::MAX`, or `f32::MAX` for the single
+/// precision types).
+fn largest_finite<R: Real>() -> f64 {
+    if R::DOUBLE {
+        f64::MAX
+    } else {
+        f64::from(f32::MAX)
+    }
 }
 
 /// The switch point 3.75 between Abramowitz and Stegun 9.8.1 and 9.8.2.
@@ -187,6 +215,25 @@ mod tests {
             assert!((got - want).abs() < 1e-13, "x = {x}: {got} vs {want}");
         }
         assert!((i0(1.0_f64) - 1.266_065_877_752_008_4).abs() < 1e-15);
+    }
+
+    #[test]
+    fn huge_and_infinite_arguments_give_the_limits() {
+        // ln(I0(x) e^-x) ~ -0.5 ln(2 pi x) - (asymptotic terms of order 1/x).
+        let want = -0.5 * (2.0 * std::f64::consts::PI).ln() - 0.5 * 1e308_f64.ln();
+        assert!(
+            (log_i0e(1e308_f64) - want).abs() < 1e-12,
+            "{}",
+            log_i0e(1e308_f64)
+        );
+        assert!((log_i0e(1e300_f64) - log_i0e(1.0000001e300_f64)).abs() < 1e-6);
+        assert_eq!(log_i0(1e308_f64), 1e308);
+        assert_eq!(i0(1e308_f64), f64::INFINITY);
+        assert_eq!(log_i0e(f64::INFINITY), f64::NEG_INFINITY);
+        assert_eq!(log_i0(f64::INFINITY), f64::INFINITY);
+        assert_eq!(i0(f64::NEG_INFINITY), f64::INFINITY);
+        assert!(log_i0e(f32::MAX).is_finite() && log_i0(f32::INFINITY) == f32::INFINITY);
+        assert_eq!(i0(100.0_f32), f32::INFINITY);
     }
 
     #[test]

@@ -41,6 +41,46 @@ pub trait Baker {
     /// The exact values of every channel at `coords` (one per axis, clamped to the axis ranges
     /// of [`Baker::axes`]), written to `out`.
     fn eval(&self, coords: &[f64], out: &mut [f64]);
+    /// The most evaluations ([`Baker::eval`]) one [`bake`] (its samples) or one
+    /// [`lookup_error`] (its points) may ask for: [`MAX_EVALUATIONS`] (2^24) by default, less
+    /// for a costly baker, so that no call runs for more than about a minute.
+    fn max_evaluations(&self) -> usize {
+        MAX_EVALUATIONS
+    }
+    /// The measured cost of one evaluation, in words, for the error of
+    /// [`Baker::max_evaluations`].
+    fn evaluation_cost(&self) -> &'static str {
+        "0.1 to 3 us"
+    }
+}
+
+/// The default of [`Baker::max_evaluations`]: 2^24 (16.8 million, a 4096 x 4096 table). The
+/// closed-form bakers cost 0.1 to 0.7 us per sample and about 3 us per error point (measured
+/// in a release build on one core): at most 12 s for a bake and 50 s for the error points.
+pub const MAX_EVALUATIONS: usize = 1 << 24;
+
+/// [`LutError::TooMuchWork`] if `asked` evaluations of `baker` (`what`: "samples" or
+/// "error points") exceed [`Baker::max_evaluations`]; a front end calls it before starting
+/// work it would otherwise find refused only after a bake.
+///
+/// # Errors
+/// As described.
+pub fn check_evaluations(
+    baker: &dyn Baker,
+    asked: usize,
+    what: &'static str,
+) -> Result<(), LutError> {
+    let max = baker.max_evaluations();
+    if asked > max {
+        return Err(LutError::TooMuchWork {
+            kind: baker.kind(),
+            what,
+            asked,
+            max,
+            cost: baker.evaluation_cost(),
+        });
+    }
+    Ok(())
 }
 
 fn check_sizes(kind: &'static str, sizes: &[usize], dims: usize) -> Result<(), LutError> {
@@ -420,9 +460,21 @@ impl FarFieldN {
     }
 }
 
+/// [`Baker::max_evaluations`] of [`FarFieldN`]: 2^16 (65,536 samples, three times the
+/// 64 x 32 x 10 tables of `hairmath::models::ComposedHair`). One sample costs about 0.16 ms at
+/// the defaults (rel_tol 1e-6) and up to 4 ms at beta_n near 1e-16 with rel_tol 1e-12
+/// (measured in a release build on one core): 10 s to 4 min at the limit.
+pub const FAR_FIELD_MAX_EVALUATIONS: usize = 1 << 16;
+
 impl Baker for FarFieldN {
     fn kind(&self) -> &'static str {
         "far-field"
+    }
+    fn max_evaluations(&self) -> usize {
+        FAR_FIELD_MAX_EVALUATIONS
+    }
+    fn evaluation_cost(&self) -> &'static str {
+        "0.16 to 4 ms"
     }
     fn description(&self) -> String {
         "Chiang 2016 far-field A_p N_p = 1/2 int A_p(h) D(phi - Phi(p, h)) dh per radian (exact \
@@ -490,15 +542,18 @@ impl Baker for FarFieldN {
 }
 
 /// Bakes `baker` at `sizes` (one per axis): evaluates [`Baker::eval`] at every grid point in
-/// f64 and rounds to f32. Deterministic: the same parameters give the same bits.
+/// f64 and rounds to f32. Deterministic: the same parameters give the same bits. Cost: one
+/// evaluation per grid point (see [`Baker::max_evaluations`]).
 ///
 /// # Errors
-/// [`LutError::Shape`] or [`LutError::Axis`] for invalid sizes.
+/// [`LutError::Shape`] or [`LutError::Axis`] for invalid sizes; [`LutError::TooMuchWork`]
+/// for more grid points than [`Baker::max_evaluations`], before any evaluation.
 pub fn bake(baker: &dyn Baker, sizes: &[usize]) -> Result<Table, LutError> {
     let axes = baker.axes(sizes)?;
     let channels = baker.channels();
     let nc = channels.len();
     let total = Table::value_count(&axes, nc)?;
+    check_evaluations(baker, total / nc, "samples")?;
     let mut data = Vec::with_capacity(total);
     let n: Vec<usize> = axes.iter().map(Axis::size).collect();
     let points = total / nc;
@@ -554,8 +609,12 @@ pub struct ErrorStats {
 /// and the direct value is taken at the rounded coordinate, so the figures are interpolation
 /// plus f32 storage error only.
 ///
+/// Cost: one evaluation per point (see [`Baker::max_evaluations`]).
+///
 /// # Errors
-/// [`LutError::Shape`] if the table's axes or channels do not match the baker's.
+/// [`LutError::Shape`] if the table's axes or channels do not match the baker's;
+/// [`LutError::TooMuchWork`] for more points than [`Baker::max_evaluations`], before any
+/// evaluation.
 pub fn lookup_error(
     baker: &dyn Baker,
     table: &Table,
@@ -569,6 +628,7 @@ pub fn lookup_error(
             channels: nc,
         }));
     }
+    check_evaluations(baker, points, "error points")?;
     let scale = table.channel_max();
     let mut u = [0.0; 3];
     let mut c32 = vec![0.0f32; dims];

@@ -45,8 +45,8 @@ mod shared;
 mod table;
 
 pub use bake::{
-    bake, error_vs_resolution, lookup_error, Baker, ErrorStats, FarFieldN, GerardN, NguyenM,
-    NguyenN, FAR_FIELD_CHANNELS,
+    bake, check_evaluations, error_vs_resolution, lookup_error, Baker, ErrorStats, FarFieldN,
+    GerardN, NguyenM, NguyenN, FAR_FIELD_CHANNELS, FAR_FIELD_MAX_EVALUATIONS, MAX_EVALUATIONS,
 };
 #[cfg(feature = "png")]
 pub use io::write_png;
@@ -157,7 +157,11 @@ pub enum ShapeError {
 #[non_exhaustive]
 pub enum LutError {
     /// An invalid axis.
-    #[error("axis {name} ({min} to {max}, {size} samples) is not allowed: {reason}")]
+    #[error(
+        "axis {name} ({} to {}, {size} samples) is not allowed: {reason}",
+        crate::csv::format_number(*.min),
+        crate::csv::format_number(*.max)
+    )]
     Axis {
         /// The axis name.
         name: String,
@@ -176,6 +180,26 @@ pub enum LutError {
     /// An invalid model parameter.
     #[error(transparent)]
     Param(#[from] ParamError),
+    /// A lookup at a NaN coordinate ([`Table::lookup_into`]).
+    #[error("the coordinate of axis {axis} is NaN (a coordinate must be a number; out-of-range ones clamp to the edge)")]
+    Coordinate {
+        /// The axis.
+        axis: String,
+    },
+    /// More evaluations asked of a baker than it allows ([`Baker::max_evaluations`]).
+    #[error("{kind} tables allow at most {max} {what} ({cost} each); {asked} asked")]
+    TooMuchWork {
+        /// The baker's kind.
+        kind: &'static str,
+        /// What is counted: "samples" (a bake) or "error points" ([`lookup_error`]).
+        what: &'static str,
+        /// How many were asked for.
+        asked: usize,
+        /// The baker's limit.
+        max: usize,
+        /// The measured cost of one evaluation, in words.
+        cost: &'static str,
+    },
     /// Reading or writing a file failed.
     #[error("I/O error on {path}: {source}")]
     Io {

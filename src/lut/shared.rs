@@ -61,11 +61,12 @@ impl<const D: usize, const C: usize> SharedTable<D, C> {
     /// [`Table::lookup_into`] at `coords`: multilinear interpolation with weights from
     /// [`axis_cell`] in `f32`, clamp to the edge. What `f32`, each SIMD lane and the traced
     /// graph's interpreter compute, bit for bit.
+    /// A NaN coordinate is taken as the axis' minimum ([`axis_cell`]): the models' hot path
+    /// rejects nothing ([`Table::lookup_into`] is the checked entry point).
     pub fn lookup_f32(&self, coords: [f32; D]) -> [f32; C] {
         let mut out = [0.0; C];
-        self.table
-            .lookup_into(&coords, &mut out)
-            .unwrap_or_else(|_| unreachable!("the shape was checked when the table was wrapped"));
+        // The shape was checked when the table was wrapped.
+        self.table.interpolate_into(&coords, &mut out);
         out
     }
 

@@ -295,22 +295,45 @@ impl Table {
 
     /// Interpolated values of every channel at `coords` (one coordinate per axis, in the axis'
     /// units), written to `out` (one value per channel): linear, bilinear or trilinear
-    /// interpolation between the samples, clamp-to-edge outside the axis ranges. Weights come
-    /// from [`axis_cell`] evaluated in f32, as a shader would.
+    /// interpolation between the samples, clamp-to-edge outside the axis ranges (infinite
+    /// coordinates included). Weights come from [`axis_cell`] evaluated in f32, as a shader
+    /// would. The checked entry point: a NaN coordinate is an error here, where the hot path
+    /// of the models ([`crate::lut::SharedTable`], shader code) takes it as the axis' minimum.
     ///
     /// # Errors
-    /// [`LutError::Shape`] if `coords` or `out` have the wrong length.
+    /// [`LutError::Shape`] if `coords` or `out` have the wrong length;
+    /// [`LutError::Coordinate`] for a NaN coordinate (`out` is then untouched).
     pub fn lookup_into(&self, coords: &[f32], out: &mut [f32]) -> Result<(), LutError> {
-        let dims = self.axes.len();
-        let nc = self.channels.len();
-        if coords.len() != dims || out.len() != nc {
+        self.check_lookup(coords, out.len())?;
+        if let Some((axis, _)) = self.axes.iter().zip(coords).find(|(_, x)| x.is_nan()) {
+            return Err(LutError::Coordinate {
+                axis: axis.name.clone(),
+            });
+        }
+        self.interpolate_into(coords, out);
+        Ok(())
+    }
+
+    /// [`LutError::Shape`] unless there is one coordinate per axis and one output per channel.
+    fn check_lookup(&self, coords: &[f32], outputs: usize) -> Result<(), LutError> {
+        let (dims, nc) = (self.axes.len(), self.channels.len());
+        if coords.len() != dims || outputs != nc {
             return Err(LutError::Shape(ShapeError::Lookup {
                 coordinates: coords.len(),
-                outputs: out.len(),
+                outputs,
                 axes: dims,
                 channels: nc,
             }));
         }
+        Ok(())
+    }
+
+    /// The interpolation of [`Table::lookup_into`] for coordinates and outputs of the right
+    /// lengths ([`Table::check_lookup`]); a NaN coordinate is taken as the axis' minimum
+    /// ([`axis_cell`]), as the hot path and shader code do.
+    pub(crate) fn interpolate_into(&self, coords: &[f32], out: &mut [f32]) {
+        let dims = self.axes.len();
+        let nc = self.channels.len();
         let mut base = [0usize; MAX_AXES];
         let mut frac = [0.0f32; MAX_AXES];
         for (d, (a, &x)) in self.axes.iter().zip(coords).enumerate() {
@@ -327,13 +350,13 @@ impl Table {
                 *o = accumulate(corner, *o, w * v);
             }
         }
-        Ok(())
     }
 
     /// [`Table::lookup_into`] returning a new vector.
     ///
     /// # Errors
-    /// [`LutError::Shape`] if `coords` has the wrong length.
+    /// [`LutError::Shape`] if `coords` has the wrong length; [`LutError::Coordinate`] for a NaN
+    /// coordinate.
     pub fn lookup(&self, coords: &[f32]) -> Result<Vec<f32>, LutError> {
         let mut out = vec![0.0; self.channels.len()];
         self.lookup_into(coords, &mut out)?;

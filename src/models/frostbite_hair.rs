@@ -70,7 +70,7 @@
 //! # Inputs
 //!
 //! Exactly [`HAIR_INPUTS`], the flags of `--model chiang-far`: `beta_m` and `beta_n` (Chiang's
-//! roughnesses, in (0, 1]), `alpha` (cuticle tilt, |alpha| < 90 degrees), `eta` ((1, 3]),
+//! roughnesses, in [1e-16, 1]), `alpha` (cuticle tilt, |alpha| < 90 degrees), `eta` ((1, 3]),
 //! `sigma_a` (absorption per unit fibre radius; a colour is inverted with Chiang's mapping at
 //! the given beta_n). The slides use Chiang's parameters by name (beta_m, beta_n of the
 //! Disney reference they compare with at equal values; the TT table is fitted to Chiang's

@@ -19,7 +19,10 @@ pub const HG_G_BETA_DOMAIN: (f64, f64) = (
 /// [`GERARD_HG_G_LITERAL_POLYNOMIAL`]).
 ///
 /// Domain [`HG_G_BETA_DOMAIN`], beta in [1, 45] degrees; beta outside is clamped to it (so the
-/// result is finite for every finite or infinite beta). Error: within
+/// result is finite for every finite or infinite beta). A hot path traced to shader code, so
+/// it rejects nothing: NaN counts as the lower end (1 degree) in `f32`, `f64` and SIMD lanes,
+/// whose `max` returns the other operand (a shader's `max` of NaN is implementation-defined;
+/// the models pass validated widths, [`crate::params::LobeWidth`]). Error: within
 /// [`super::constants::GERARD_HG_G_LITERAL_POLYNOMIAL_MAX_ERROR`] (3.9e-4) of the fitted g
 /// (tests/fit_hg.rs). This reading does not give Gerard's printed 0.865 and 0.578 (README,
 /// erratum on g).
@@ -32,7 +35,8 @@ pub fn gerard_hg_g<R: Real>(beta: R) -> R {
 /// (radians), as a polynomial in sqrt(beta) ([`HG_G_NORMALISED_POLYNOMIAL`], fitted by
 /// `hairmath::fit::hg`); the natural reading of Gerard's section 2.1 for a unit-integral lobe.
 ///
-/// Domain [`HG_G_BETA_DOMAIN`], beta in [1, 45] degrees; beta outside is clamped. Error: within
+/// Domain [`HG_G_BETA_DOMAIN`], beta in [1, 45] degrees; beta outside is clamped, NaN counts
+/// as 1 degree (as for [`gerard_hg_g`]). Error: within
 /// [`super::constants::HG_G_NORMALISED_POLYNOMIAL_MAX_ERROR`] (1.1e-4) of the fitted g
 /// (tests/fit_hg.rs).
 pub fn hg_g_normalised<R: Real>(beta: R) -> R {

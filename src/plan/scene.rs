@@ -24,6 +24,7 @@ use toml::de::{DeInteger, DeTable, DeValue};
 use toml::Spanned;
 
 use crate::absorption::Absorption;
+use crate::csv::format_number;
 use crate::params::{AzimuthalRoughness, CuticleTilt, LongitudinalRoughness, RefractiveIndex};
 
 /// What the planner minimises.
@@ -86,9 +87,9 @@ pub enum HairKey {
     Eumelanin,
     /// The pheomelanin concentration (`pheomelanin`, >= 0, default 0).
     Pheomelanin,
-    /// The longitudinal roughness (`beta_m`, in (0, 1]).
+    /// The longitudinal roughness (`beta_m`, in [1e-16, 1]).
     BetaM,
-    /// The azimuthal roughness (`beta_n`, in (0, 1]).
+    /// The azimuthal roughness (`beta_n`, in [1e-16, 1]).
     BetaN,
     /// The cuticle tilt in degrees (`alpha_deg`, |alpha| < 90, default 2).
     AlphaDeg,
@@ -147,8 +148,9 @@ impl HairKey {
         };
         checked.map_err(|e| match self {
             HairKey::AlphaDeg => format!(
-                "{value} is not allowed: alpha_deg is the cuticle tilt in degrees, finite with \
-                 |alpha_deg| < 90 ({e})"
+                "{} is not allowed: alpha_deg is the cuticle tilt in degrees, finite with \
+                 |alpha_deg| < 90 ({e})",
+                format_number(value)
             ),
             _ => e.to_string(),
         })
@@ -267,23 +269,37 @@ impl Scene {
     }
 
     /// Reads and parses the file at `path` (an unreadable file is a [`SceneError`] too, at
-    /// line 0).
+    /// line 0). At most [`MAX_SCENE_BYTES`] are read, so that a path such as `/dev/zero`
+    /// cannot make it read without end.
     ///
     /// # Errors
-    /// As [`Scene::parse`], and a file that cannot be read as UTF-8 text.
+    /// As [`Scene::parse`], and a file that cannot be read as UTF-8 text or is longer than
+    /// [`MAX_SCENE_BYTES`].
     pub fn read(path: &Path) -> Result<Scene, SceneError> {
+        use std::io::Read;
         let file = path.display().to_string();
-        match std::fs::read_to_string(path) {
-            Ok(text) => Scene::parse(&text, &file),
-            Err(e) => Err(SceneError {
-                file,
-                line: 0,
-                key: String::new(),
-                message: format!("cannot read the scene file: {e}"),
-            }),
+        let unreadable = |message: String| SceneError {
+            file: file.clone(),
+            line: 0,
+            key: String::new(),
+            message,
+        };
+        let mut text = String::new();
+        std::fs::File::open(path)
+            .and_then(|f| f.take(MAX_SCENE_BYTES as u64 + 1).read_to_string(&mut text))
+            .map_err(|e| unreadable(format!("cannot read the scene file: {e}")))?;
+        if text.len() > MAX_SCENE_BYTES {
+            return Err(unreadable(format!(
+                "the scene file is longer than {MAX_SCENE_BYTES} bytes (the limit of a scene \
+                 file; the example scenes have a few hundred)"
+            )));
         }
+        Scene::parse(&text, &file)
     }
 }
+
+/// The longest scene file [`Scene::read`] accepts, in bytes (1 MiB).
+pub const MAX_SCENE_BYTES: usize = 1 << 20;
 
 /// A scene file that cannot be used: where, which key, what is wrong and what is allowed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -544,7 +560,8 @@ fn budget(field: &Field<'_>) -> Result<f64, SceneError> {
         Ok(budget)
     } else {
         Err(field.at_value(format!(
-            "{budget} is not allowed: the budget is a finite error E > 0"
+            "{} is not allowed: the budget is a finite error E > 0",
+            format_number(budget)
         )))
     }
 }
@@ -606,7 +623,11 @@ fn param_range(field: &Field<'_>, key: HairKey) -> Result<ParamRange, SceneError
     }
     if range.min() > range.max() {
         let (min, max) = (range.min(), range.max());
-        let message = format!("min {min} > max {max}: a range is [min, max] with min <= max");
+        let message = format!(
+            "min {} > max {}: a range is [min, max] with min <= max",
+            format_number(min),
+            format_number(max)
+        );
         return Err(field.at_value(message));
     }
     Ok(range)

@@ -1014,8 +1014,8 @@ impl Graph {
             *slot = c.unwrap_or(0.0);
         }
         let mut out = [0.0f32; MAX_CHANNELS];
-        t.lookup_into(&x[..dims], &mut out[..nc])
-            .unwrap_or_else(|_| unreachable!("a fetch has one coordinate per axis"));
+        // A fetch has one coordinate per axis; a NaN one is the axis' minimum, as in f32.
+        t.interpolate_into(&x[..dims], &mut out[..nc]);
         out[channel as usize]
     }
 

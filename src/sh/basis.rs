@@ -44,9 +44,35 @@ pub const fn coefficient_count(bands: usize) -> usize {
     bands * bands
 }
 
-/// Index of coefficient `(l, m)`: `l (l + 1) + m`. Requires `|m| <= l`.
-pub const fn sh_index(l: usize, m: isize) -> usize {
-    (l * (l + 1)).wrapping_add_signed(m)
+/// Index of coefficient `(l, m)`: `l (l + 1) + m` (the crate's SH convention, [`crate::sh`]).
+/// The inverse is [`crate::sh::index_to_lm`].
+///
+/// # Errors
+/// [`ParamError::OutOfRange`] naming `m` if `|m| > l` (there is no such coefficient), or
+/// naming `l` if the index does not fit in `usize` (l above about 4.3e9 on 64-bit targets).
+pub const fn sh_index(l: usize, m: isize) -> Result<usize, ParamError> {
+    if m.unsigned_abs() > l {
+        return Err(ParamError::OutOfRange {
+            name: "m",
+            value: m as f64,
+            allowed: "|m| must not exceed l",
+        });
+    }
+    let index = match l.checked_add(1) {
+        Some(next) => match l.checked_mul(next) {
+            Some(band_centre) => band_centre.checked_add_signed(m),
+            None => None,
+        },
+        None => None,
+    };
+    match index {
+        Some(index) => Ok(index),
+        None => Err(ParamError::OutOfRange {
+            name: "l",
+            value: l as f64,
+            allowed: "l (l + 1) + m must fit in usize",
+        }),
+    }
 }
 
 /// Horner coefficients (ascending powers of `z^2`) of `Q_l^m(z) / z^((l - m) mod 2)` for

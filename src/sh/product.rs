@@ -49,7 +49,8 @@ impl ProductPlan {
     /// Builds the plan for bands `l < n_bands` from the exact real Gaunt tensor.
     ///
     /// # Errors
-    /// [`ParamError::OutOfRange`] unless `1 <= n_bands <= 40`.
+    /// [`ParamError::OutOfRange`] unless `1 <= n_bands <= 16`
+    /// ([`crate::sh::MAX_TENSOR_BANDS`], whose documentation states the tensor's cost).
     pub fn new(n_bands: usize) -> Result<Self, ParamError> {
         let tensor = GauntTensor::new(n_bands)?;
         let n = n_bands * n_bands;

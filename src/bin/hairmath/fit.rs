@@ -1,16 +1,16 @@
 //! `hairmath fit`: regenerates every fitted constant and prints one table (or JSON), and can
 //! write the generated constants file.
 
-use std::io::{self, BufWriter, Write};
-use std::path::PathBuf;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
 
 use clap::Args;
-use hairmath::fit::{absorption_report, TABLE_SIGMA_A};
+use hairmath::fit::{absorption_report, AbsorptionReport, FrostbiteReport, TABLE_SIGMA_A};
 use hairmath::fit::{all_fits, constants_source};
 use hairmath::fit::{frostbite_report, AttenuationErrorTable, TtGaussianTable};
 use hairmath::fit::{ConstantFit, FitOutput, FitSettings};
 
-use crate::CliError;
+use crate::{with_stdout, CliError};
 
 /// Arguments of `hairmath fit`.
 #[derive(Args, Debug)]
@@ -39,23 +39,87 @@ pub fn fits(eta: f64) -> Result<(FitSettings, FitOutput), CliError> {
     Ok((settings, output))
 }
 
-/// `hairmath fit`.
+/// `hairmath fit`. The constants file of --write-constants is opened before the fits run, so
+/// that a path that cannot be written is reported at once, not after the fits.
 pub fn run(args: &FitArgs) -> Result<(), CliError> {
-    let (settings, output) = fits(args.eta)?;
-    if let Some(path) = &args.write_constants {
-        std::fs::write(path, constants_source(&settings, &output))?;
+    FitSettings::new(args.eta)?;
+    let target = args
+        .write_constants
+        .as_deref()
+        .map(OutputFile::open)
+        .transpose()?;
+    let (settings, output) = match fits(args.eta) {
+        Ok(done) => done,
+        Err(e) => {
+            if let Some(target) = target {
+                target.abandon();
+            }
+            return Err(e);
+        }
+    };
+    if let Some(target) = target {
+        target.write(constants_source(&settings, &output).as_bytes())?;
     }
-    let mut out = BufWriter::new(io::stdout().lock());
+    with_stdout(|out| print(args, &settings, &output, out))
+}
+
+/// The table (or JSON) and, with --details, the error tables, to `out` (standard output).
+fn print(
+    args: &FitArgs,
+    settings: &FitSettings,
+    output: &FitOutput,
+    out: &mut impl Write,
+) -> Result<(), CliError> {
     if args.json {
-        writeln!(out, "{}", json(&output.records))?;
+        writeln!(out, "{}", json(&output.records)).map_err(CliError::stdout)?;
     } else {
-        table(&mut out, &output.records)?;
+        table(out, &output.records).map_err(CliError::stdout)?;
     }
     if args.details {
-        details(&mut out, &settings)?;
+        details(out, settings)?;
     }
-    out.flush()?;
     Ok(())
+}
+
+/// A file opened for writing before the work whose result it receives: opening it finds an
+/// unwritable path at once. A file it created is removed if the work fails.
+struct OutputFile<'a> {
+    path: &'a Path,
+    file: std::fs::File,
+    created: bool,
+}
+
+impl<'a> OutputFile<'a> {
+    /// Opens (creating, not yet truncating) `path`.
+    fn open(path: &'a Path) -> Result<Self, CliError> {
+        let created = !path.exists();
+        let file = std::fs::OpenOptions::new()
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(path)
+            .map_err(|e| CliError::io(path, e))?;
+        Ok(OutputFile {
+            path,
+            file,
+            created,
+        })
+    }
+
+    /// Replaces the file's contents with `bytes`.
+    fn write(mut self, bytes: &[u8]) -> Result<(), CliError> {
+        let io = |e| CliError::io(self.path, e);
+        self.file.set_len(0).map_err(io)?;
+        self.file.write_all(bytes).map_err(io)?;
+        self.file.flush().map_err(io)
+    }
+
+    /// Leaves the file as it was: removes it if [`OutputFile::open`] created it.
+    fn abandon(self) {
+        if self.created {
+            let _ = std::fs::remove_file(self.path);
+        }
+    }
 }
 
 /// A number for the table: 4 significant digits, or "-" when absent.
@@ -122,6 +186,16 @@ pub fn json_rows(records: &[ConstantFit]) -> serde_json::Value {
 /// The error tables behind the summary rows.
 fn details(out: &mut impl Write, settings: &FitSettings) -> Result<(), CliError> {
     let absorption = absorption_report(settings)?;
+    let frostbite = frostbite_report(settings)?;
+    write_details(out, &absorption, &frostbite).map_err(CliError::stdout)
+}
+
+/// Writes the error tables of [`details`].
+fn write_details(
+    out: &mut impl Write,
+    absorption: &AbsorptionReport,
+    frostbite: &FrostbiteReport,
+) -> io::Result<()> {
     writeln!(
         out,
         "\n## Absorption exponents: (e^(-k sigma_a) - E(sigma_a)/E(0)) / (E(sigma_a)/E(0))\n"
@@ -151,7 +225,6 @@ fn details(out: &mut impl Write, settings: &FitSettings) -> Result<(), CliError>
             )?;
         }
     }
-    let frostbite = frostbite_report(settings)?;
     for offset in [&frostbite.tt_offset, &frostbite.trt_offset] {
         for (label, table) in [("published", &offset.published), ("refit", &offset.refit)] {
             attenuation_table(out, label, table)?;

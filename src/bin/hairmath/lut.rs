@@ -1,18 +1,20 @@
 //! `hairmath lut`: bakes a lookup table, writes it as raw f32 + JSON (and PNG for 2D tables),
 //! and prints the measured error of lookup against direct evaluation.
 
-use std::path::PathBuf;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 use hairmath::absorption::Absorption;
 use hairmath::azimuthal::CausticParams;
 use hairmath::lut::{
-    bake, lookup_error, write_png, write_raw, Baker, FarFieldN, GerardN, NguyenM, NguyenN, Table,
+    bake, check_evaluations, lookup_error, write_png, write_raw, Baker, FarFieldN, GerardN,
+    NguyenM, NguyenN, Table,
 };
 use hairmath::params::{AzimuthalRoughness, LobeShift, LobeWidth, MarschnerLobes, RefractiveIndex};
 
 use crate::flags::{parse_floats, parse_rgb};
-use crate::CliError;
+use crate::{create_dir, with_stdout, CliError};
 
 /// Which table to bake.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -29,14 +31,14 @@ pub enum LutKind {
 
 /// Arguments of `hairmath lut`. Flags shared with `hairmath eval` mean the same there.
 #[derive(Args, Debug)]
-#[command(allow_negative_numbers = true)]
 pub struct LutArgs {
     /// The table to bake.
     #[arg(long, value_enum)]
     kind: LutKind,
     /// Samples per axis, comma separated (2 sizes for 2D kinds, 3 for far-field); default
     /// 64,64 (nguyen-m, nguyen-n), 64,32 (gerard), 16,8,4 (far-field). The far field costs
-    /// about 0.2 ms per sample.
+    /// about 0.16 ms per sample and takes at most 65536 samples; the other kinds at most
+    /// 16777216 (about 12 s).
     #[arg(long, value_delimiter = ',')]
     size: Vec<usize>,
     /// Relative index of refraction eta, in (1, 3].
@@ -54,7 +56,7 @@ pub struct LutArgs {
     /// = -alpha_R/2, alpha_TRT = -3 alpha_R/2.
     #[arg(long, value_name = "DEGREES", default_value_t = -5.0)]
     alpha_r_deg: f64,
-    /// The range MIN,MAX of azimuthal roughness beta_n (each in (0, 1]) of the far-field
+    /// The range MIN,MAX of azimuthal roughness beta_n (each in [1e-16, 1]) of the far-field
     /// table's third axis.
     #[arg(long, value_name = "MIN,MAX", value_parser = parse_floats::<2>, default_value = "0.2,0.8", allow_hyphen_values = true)]
     beta_n_range: [f64; 2],
@@ -67,7 +69,9 @@ pub struct LutArgs {
     /// Leave out Marschner's TRT caustic treatment (nguyen-n, gerard).
     #[arg(long)]
     no_caustic: bool,
-    /// Number of off-grid points at which lookup is compared with direct evaluation (0: skip).
+    /// Number of off-grid points at which lookup is compared with direct evaluation (0: skip);
+    /// at most 65536 for far-field, 16777216 for the other kinds (each point costs one
+    /// evaluation: 0.16 ms for far-field, up to 3 us for the others).
     #[arg(long, default_value_t = 1000)]
     error_points: usize,
     /// Output directory (created if missing).
@@ -103,7 +107,8 @@ fn baker(args: &LutArgs) -> Result<Box<dyn Baker>, CliError> {
     })
 }
 
-/// Bakes, writes and reports.
+/// Bakes, writes and reports. Every limit (the table's size, the error points) is checked
+/// before the bake starts.
 pub fn run(args: &LutArgs) -> Result<(), CliError> {
     let baker = baker(args)?;
     let sizes = if args.size.is_empty() {
@@ -111,24 +116,39 @@ pub fn run(args: &LutArgs) -> Result<(), CliError> {
     } else {
         args.size.clone()
     };
+    check_evaluations(baker.as_ref(), args.error_points, "error points")?;
+    create_dir(&args.out)?;
     let table = bake(baker.as_ref(), &sizes)?;
-    std::fs::create_dir_all(&args.out)?;
+    with_stdout(|out| write_and_report(args, baker.as_ref(), &sizes, &table, out))
+}
+
+/// Writes the table's files and prints what was written, the 8-bit scales and the lookup
+/// error to `out` (standard output).
+fn write_and_report(
+    args: &LutArgs,
+    baker: &dyn Baker,
+    sizes: &[usize],
+    table: &Table,
+    out: &mut impl Write,
+) -> Result<(), CliError> {
     let stem = baker.kind().replace('-', "_");
     let dims: Vec<String> = sizes.iter().map(usize::to_string).collect();
     let name = format!("{stem}_{}", dims.join("x"));
     let raw = args.out.join(format!("{name}.f32"));
-    let json = write_raw(&table, &raw)?;
-    println!("wrote {}", raw.display());
-    println!("wrote {}", json.display());
+    let json = write_raw(table, &raw)?;
+    let mut wrote = |path: &Path| writeln!(out, "wrote {}", path.display());
+    wrote(&raw).map_err(CliError::stdout)?;
+    wrote(&json).map_err(CliError::stdout)?;
     for (suffix, channels) in png_layout(args.kind) {
         let path = args.out.join(format!("{name}{suffix}.png"));
-        write_png(&table, channels, &path)?;
-        println!("wrote {}", path.display());
+        write_png(table, channels, &path)?;
+        wrote(&path).map_err(CliError::stdout)?;
     }
-    print_scales(&table);
+    print_scales(out, table).map_err(CliError::stdout)?;
     if args.error_points > 0 {
-        let s = lookup_error(baker.as_ref(), &table, args.error_points)?;
-        println!(
+        let s = lookup_error(baker, table, args.error_points)?;
+        writeln!(
+            out,
             "lookup vs direct at {} off-grid points: max abs {:.3e}, mean abs {:.3e}, \
              max rel {:.3e} (channel {}), mean rel {:.3e} (relative to each channel's maximum)",
             s.points,
@@ -137,7 +157,8 @@ pub fn run(args: &LutArgs) -> Result<(), CliError> {
             s.max_rel,
             table.channels()[s.worst_channel],
             s.mean_rel
-        );
+        )
+        .map_err(CliError::stdout)?;
     }
     Ok(())
 }
@@ -154,7 +175,7 @@ fn png_layout(kind: LutKind) -> Vec<(&'static str, &'static [usize])> {
     }
 }
 
-fn print_scales(table: &Table) {
+fn print_scales(out: &mut impl Write, table: &Table) -> io::Result<()> {
     let scales = table.png_scale();
     let items: Vec<String> = table
         .channels()
@@ -162,5 +183,5 @@ fn print_scales(table: &Table) {
         .zip(scales)
         .map(|(c, s)| format!("{c} {s:.6e}"))
         .collect();
-    println!("8-bit scale (texel 255 = value): {}", items.join(", "));
+    writeln!(out, "8-bit scale (texel 255 = value): {}", items.join(", "))
 }

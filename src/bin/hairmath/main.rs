@@ -16,7 +16,11 @@
 //!   of rows read as CSV from stdin.
 //!
 //! Errors in the input or the parameters are reported on stderr and end the program with exit
-//! status 2; argument errors found by clap keep clap's own status.
+//! status 2; argument errors found by clap keep clap's own status. Every option that takes a
+//! number takes a negative one as `--opt -1` (as well as `--opt=-1`). Output that cannot be
+//! written is an error naming the file (or standard output) with status 2, except that a
+//! reader that closed standard output early (`hairmath ... | head`) ends the program quietly
+//! with status 0.
 
 mod approximations;
 mod eval;
@@ -32,9 +36,10 @@ mod sh;
 mod shader;
 mod strands;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::fmt;
-use std::io;
+use std::io::{self, BufWriter, Write};
+use std::path::Path;
 use std::process::ExitCode;
 
 /// The mathematics of hair shading, from the command line.
@@ -221,8 +226,13 @@ pub enum CliError {
     Plan(String),
     /// A `.hair` file could not be read or written, or a bake's output could not be written.
     Strands(String),
-    /// Reading or writing failed.
-    Io(io::Error),
+    /// Reading or writing a file (or standard output) failed.
+    Io {
+        /// The file, or "standard output".
+        path: String,
+        /// What failed.
+        error: io::Error,
+    },
 }
 
 impl CliError {
@@ -231,6 +241,58 @@ impl CliError {
         CliError::Input {
             line,
             message: message.into(),
+        }
+    }
+
+    /// An I/O error on the file (or folder) `path`.
+    pub fn io(path: &Path, error: io::Error) -> Self {
+        CliError::Io {
+            path: path.display().to_string(),
+            error,
+        }
+    }
+
+    /// An I/O error writing standard output (a closed pipe among them, which [`main`] ends
+    /// quietly).
+    pub fn stdout(error: io::Error) -> Self {
+        CliError::Io {
+            path: STDOUT.to_string(),
+            error,
+        }
+    }
+}
+
+/// How errors name standard output.
+const STDOUT: &str = "standard output";
+
+/// Runs `print` on buffered standard output and flushes it, also when `print` fails (so that
+/// what was written before an error reaches the reader); write errors name standard output.
+pub fn with_stdout(
+    print: impl FnOnce(&mut BufWriter<io::StdoutLock<'static>>) -> Result<(), CliError>,
+) -> Result<(), CliError> {
+    let mut out = BufWriter::new(io::stdout().lock());
+    let result = print(&mut out);
+    let flushed = out.flush();
+    result?;
+    flushed.map_err(CliError::stdout)
+}
+
+/// Writes `bytes` to the file `path`, naming it in the error.
+pub fn write_file(path: &Path, bytes: impl AsRef<[u8]>) -> Result<(), CliError> {
+    std::fs::write(path, bytes).map_err(|e| CliError::io(path, e))
+}
+
+/// Creates the folder `path` and its parents, naming it in the error.
+pub fn create_dir(path: &Path) -> Result<(), CliError> {
+    std::fs::create_dir_all(path).map_err(|e| CliError::io(path, e))
+}
+
+impl From<hairmath::csv::CsvError> for CliError {
+    fn from(e: hairmath::csv::CsvError) -> Self {
+        match e {
+            hairmath::csv::CsvError::Input { line, message } => CliError::Input { line, message },
+            hairmath::csv::CsvError::Write(e) => CliError::stdout(e),
+            other => CliError::input(0, other.to_string()),
         }
     }
 }
@@ -257,14 +319,8 @@ impl fmt::Display for CliError {
             }
             CliError::Comparison(e) => write!(f, "{e}"),
             CliError::Shader(e) | CliError::Plan(e) | CliError::Strands(e) => write!(f, "{e}"),
-            CliError::Io(e) => write!(f, "I/O error: {e}"),
+            CliError::Io { path, error } => write!(f, "I/O error on {path}: {error}"),
         }
-    }
-}
-
-impl From<io::Error> for CliError {
-    fn from(e: io::Error) -> Self {
-        CliError::Io(e)
     }
 }
 
@@ -314,8 +370,15 @@ impl From<hairmath::shader::ShaderError> for CliError {
     }
 }
 
+/// The command line, every subcommand taking negative numbers as option values.
+fn parse() -> Cli {
+    let command = Cli::command().mut_subcommands(|c| c.allow_negative_numbers(true));
+    let matches = command.get_matches();
+    Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = parse();
     let result = match &cli.command {
         Command::Eval(args) => eval::run(args),
         Command::Report(args) => report::run(args),
@@ -333,9 +396,14 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         // The reader of our output went away (`hairmath eval ... | head`): stop quietly.
-        Err(CliError::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(CliError::Io { path, error })
+            if path == STDOUT && error.kind() == io::ErrorKind::BrokenPipe =>
+        {
+            ExitCode::SUCCESS
+        }
         Err(e) => {
-            eprintln!("hairmath: error: {e}");
+            // Nothing more to do if stderr cannot be written either.
+            let _ = writeln!(io::stderr(), "hairmath: error: {e}");
             ExitCode::from(2)
         }
     }

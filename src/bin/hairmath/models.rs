@@ -3,7 +3,7 @@
 //! every number comes from the library.
 
 use crate::flags::input_flag_values;
-use crate::CliError;
+use crate::{with_stdout, CliError};
 use clap::Args;
 use hairmath::diagnostics::{ModelError, OpCounts};
 use hairmath::fit::{
@@ -11,7 +11,7 @@ use hairmath::fit::{
 };
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 
 /// Arguments of `hairmath models`.
 #[derive(Args, Debug)]
@@ -69,16 +69,16 @@ pub fn run(args: &ModelsArgs) -> Result<(), CliError> {
     bar.set_message("fitting models");
     let rows = compare_models(&settings, &|done, _| bar.set_position(done as u64))?;
     bar.finish_and_clear();
-    let mut out = BufWriter::new(io::stdout().lock());
-    if args.json {
-        let rows: Vec<Value> = rows.iter().map(|r| row_json(r, &settings)).collect();
-        let text = serde_json::to_string_pretty(&rows).expect("JSON of finite numbers");
-        writeln!(out, "{text}")?;
-    } else {
-        markdown(&mut out, &rows, &settings)?;
-    }
-    out.flush()?;
-    Ok(())
+    with_stdout(|out| {
+        if args.json {
+            let rows: Vec<Value> = rows.iter().map(|r| row_json(r, &settings)).collect();
+            let text = serde_json::to_string_pretty(&rows).expect("JSON of finite numbers");
+            writeln!(out, "{text}")
+        } else {
+            markdown(out, &rows, &settings)
+        }
+        .map_err(CliError::stdout)
+    })
 }
 
 pub(crate) fn row_json(r: &ModelRow, settings: &ComparisonSettings) -> Value {

@@ -3,7 +3,7 @@
 //! and `plan.json`. This file only formats what the library computes.
 
 use crate::shader::languages;
-use crate::CliError;
+use crate::{create_dir, with_stdout, write_file, CliError};
 use clap::builder::PossibleValuesParser;
 use clap::Args;
 use hairmath::diagnostics::OpCounts;
@@ -14,8 +14,7 @@ use hairmath::plan::{
 use hairmath::shader::{graph_shader, table_files, CommittedFile, Language, ModelShader};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
-use std::fs;
-use std::io::{self, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `hairmath plan`.
@@ -48,6 +47,10 @@ fn extension(language: Language) -> &'static str {
 /// Runs `hairmath plan`.
 pub fn run(args: &PlanArgs) -> Result<(), CliError> {
     let scene = Scene::read(&args.scene).map_err(|e| CliError::Plan(e.to_string()))?;
+    // An output folder that cannot be made is reported before the planning, not after it.
+    if let Some(dir) = &args.out {
+        create_dir(dir)?;
+    }
     let bar = ProgressBar::new(0);
     bar.set_style(
         ProgressStyle::with_template("measuring {msg} [{bar:40}] {pos}/{len} hairs, {elapsed}")
@@ -80,16 +83,17 @@ pub fn run(args: &PlanArgs) -> Result<(), CliError> {
     if let Some(dir) = &args.out {
         write_outputs(dir, &shader, language, &file, &data)?;
     }
-    let mut stdout = io::stdout().lock();
-    match args.json {
-        true => writeln!(
-            stdout,
-            "{}",
-            serde_json::to_string_pretty(&data).expect("JSON")
-        )?,
-        false => write!(stdout, "{}", plan_text(&scene, &plan, &published))?,
-    }
-    Ok(stdout.flush()?)
+    with_stdout(|out| {
+        match args.json {
+            true => writeln!(
+                out,
+                "{}",
+                serde_json::to_string_pretty(&data).expect("JSON")
+            ),
+            false => write!(out, "{}", plan_text(&scene, &plan, &published)),
+        }
+        .map_err(CliError::stdout)
+    })
 }
 
 /// Writes the shader, its tables and bindings, and `plan.json` into `dir`.
@@ -100,8 +104,8 @@ fn write_outputs(
     file: &str,
     data: &Value,
 ) -> Result<(), CliError> {
-    fs::create_dir_all(dir)?;
-    fs::write(dir.join(file), shader.write(language)?)?;
+    create_dir(dir)?;
+    write_file(&dir.join(file), shader.write(language)?)?;
     let (tables, mut files) = table_files("hair", shader);
     if !shader.module.bindings().is_empty() {
         files.push(CommittedFile {
@@ -110,10 +114,10 @@ fn write_outputs(
         });
     }
     for f in files {
-        fs::write(dir.join(&f.name), &f.contents)?;
+        write_file(&dir.join(&f.name), &f.contents)?;
     }
     let text = serde_json::to_string_pretty(data).expect("JSON") + "\n";
-    Ok(fs::write(dir.join("plan.json"), text)?)
+    write_file(&dir.join("plan.json"), text)
 }
 
 /// The factors of one lobe as JSON.

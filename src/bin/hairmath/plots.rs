@@ -9,7 +9,7 @@
 //!
 //! SVG needs no font files: the text is written as SVG text and drawn by the viewer.
 
-use crate::CliError;
+use crate::{create_dir, CliError};
 use hairmath::plan::{Catalogue, ModelCurves};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -29,21 +29,25 @@ const PALETTE: [RGBColor; 10] = [
     RGBColor(188, 189, 34),
 ];
 
-/// A plotters error as the command's error.
-fn plot_error(e: impl std::fmt::Display) -> CliError {
-    CliError::Io(std::io::Error::other(format!("cannot draw a plot: {e}")))
+/// A plotters error, in words (the caller names the file).
+fn plot_error(e: impl std::fmt::Display) -> String {
+    format!("cannot draw a plot: {e}")
 }
 
 /// Writes both plots of every `(scene name, catalogue)` into `dir` (created if missing) and
 /// returns the files written.
 pub fn write(dir: &Path, catalogues: &[(&str, Catalogue)]) -> Result<Vec<PathBuf>, CliError> {
-    std::fs::create_dir_all(dir)?;
+    create_dir(dir)?;
+    let failed = |path: &Path| {
+        let path = path.to_path_buf();
+        move |e: String| CliError::io(&path, std::io::Error::other(e))
+    };
     let mut files = Vec::new();
     for (name, catalogue) in catalogues {
         let front = dir.join(format!("front-{name}.svg"));
-        front_plot(&front, name, catalogue)?;
+        front_plot(&front, name, catalogue).map_err(failed(&front))?;
         let lobes = dir.join(format!("lobes-{name}.svg"));
-        lobe_plot(&lobes, name, &catalogue.curves)?;
+        lobe_plot(&lobes, name, &catalogue.curves).map_err(failed(&lobes))?;
         files.extend([front, lobes]);
     }
     Ok(files)
@@ -63,7 +67,7 @@ fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
 }
 
 /// The front plot of one scene.
-fn front_plot(path: &Path, name: &str, c: &Catalogue) -> Result<(), CliError> {
+fn front_plot(path: &Path, name: &str, c: &Catalogue) -> Result<(), String> {
     let root = SVGBackend::new(path, (900, 640)).into_drawing_area();
     root.fill(&WHITE).map_err(plot_error)?;
     let costs = c
@@ -149,7 +153,7 @@ fn front_plot(path: &Path, name: &str, c: &Catalogue) -> Result<(), CliError> {
 }
 
 /// The lobe plot of one scene: a panel per inclination.
-fn lobe_plot(path: &Path, name: &str, models: &[ModelCurves]) -> Result<(), CliError> {
+fn lobe_plot(path: &Path, name: &str, models: &[ModelCurves]) -> Result<(), String> {
     let panels = models.first().map_or(0, |m| m.curves.len());
     let root = SVGBackend::new(path, (900, 360 * panels.max(1) as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(plot_error)?;
@@ -172,7 +176,7 @@ fn lobe_panel(
     name: &str,
     models: &[ModelCurves],
     k: usize,
-) -> Result<(), CliError> {
+) -> Result<(), String> {
     let top = models
         .iter()
         .flat_map(|m| m.curves[k].value.iter().map(mean))

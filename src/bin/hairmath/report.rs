@@ -5,7 +5,7 @@
 //! markdown or JSON on stdout. This file only formats: every number comes from the library.
 
 use crate::approximations;
-use crate::CliError;
+use crate::{with_stdout, CliError};
 use clap::Args;
 use hairmath::bcsdf::CHIANG_LOBES;
 use hairmath::diagnostics::{
@@ -13,10 +13,10 @@ use hairmath::diagnostics::{
     LobeEnergies, Report, ReportDetail, ReportSettings, FAR_NODES, INTEGRATOR_SIGMA_A, PEAK_FLOOR,
     REFERENCE_TOL, REFINED_TOL, REPORT_ALPHA_DEG, REPORT_BETA, REPORT_ETA, SHARP_BETA,
 };
-use hairmath::fit::{compare_models, ComparisonSettings, ConstantFit};
-use hairmath::plan::PlanSettings;
+use hairmath::fit::{compare_models, ComparisonSettings, ConstantFit, ModelRow};
+use hairmath::plan::{Catalogue, PlanSettings};
 use serde_json::{json, Value};
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 
 /// Arguments of `hairmath report`.
 #[derive(Args, Debug)]
@@ -72,6 +72,10 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
     } else {
         ReportDetail::Full
     };
+    // A plot folder that cannot be made is reported before the report's work, not after it.
+    if let Some(dir) = &args.plots {
+        crate::create_dir(dir)?;
+    }
     let report = report(&ReportSettings::new(detail))?;
     let (_, fits) = crate::fit::fits(REPORT_ETA)?;
     let models = if args.quick {
@@ -88,30 +92,44 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
     let catalogues = approximations::catalogues(&plan_settings)?;
     if let Some(dir) = &args.plots {
         for file in crate::plots::write(dir, &catalogues)? {
-            eprintln!("wrote {}", file.display());
+            // A progress note: an unwritable stderr does not fail the report.
+            let _ = writeln!(io::stderr(), "wrote {}", file.display());
         }
     }
-    let mut out = BufWriter::new(io::stdout().lock());
-    if args.json {
-        let mut value = json(&report, &fits.records);
-        value["models"] = rows
-            .iter()
-            .map(|r| crate::models::row_json(r, &models))
-            .collect();
-        value["approximations"] = approximations::json(&catalogues);
-        let text = serde_json::to_string_pretty(&value).map_err(io::Error::other)?;
-        writeln!(out, "{text}")?;
-    } else {
-        markdown(&mut out, &report, &fits.records)?;
-        writeln!(
-            out,
-            "\n## Real-time models (`hairmath models`, brown hair, beta_m = beta_n = 0.3)\n"
-        )?;
-        crate::models::markdown(&mut out, &rows, &models)?;
-        approximations::markdown(&mut out, &catalogues)?;
-    }
-    out.flush()?;
-    Ok(())
+    with_stdout(|out| {
+        let written = if args.json {
+            let mut value = json(&report, &fits.records);
+            value["models"] = rows
+                .iter()
+                .map(|r| crate::models::row_json(r, &models))
+                .collect();
+            value["approximations"] = approximations::json(&catalogues);
+            serde_json::to_string_pretty(&value)
+                .map_err(io::Error::other)
+                .and_then(|text| writeln!(out, "{text}"))
+        } else {
+            full_markdown(out, &report, &fits.records, &rows, &models, &catalogues)
+        };
+        written.map_err(CliError::stdout)
+    })
+}
+
+/// The report, the real-time models and the approximations, as markdown.
+fn full_markdown(
+    out: &mut impl Write,
+    report: &Report,
+    fits: &[ConstantFit],
+    rows: &[ModelRow],
+    models: &ComparisonSettings,
+    catalogues: &[(&str, Catalogue)],
+) -> io::Result<()> {
+    markdown(out, report, fits)?;
+    writeln!(
+        out,
+        "\n## Real-time models (`hairmath models`, brown hair, beta_m = beta_n = 0.3)\n"
+    )?;
+    crate::models::markdown(out, rows, models)?;
+    approximations::markdown(out, catalogues)
 }
 
 // ---------------------------------------------------------------------------------------------

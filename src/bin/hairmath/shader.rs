@@ -3,13 +3,12 @@
 //! writes what the library emits.
 
 use crate::flags::{model_names, ModelFlags};
-use crate::CliError;
+use crate::{create_dir, with_stdout, write_file, CliError};
 use clap::builder::{PossibleValue, PossibleValuesParser};
 use clap::Args;
 use hairmath::registry::find_model;
 use hairmath::shader::{committed_shaders, model_shader, table_files, CommittedFile, Language};
-use std::fs;
-use std::io::{self, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// The `--lang` values ([`Language::ALL`]), for `shader` and `plan`.
@@ -67,9 +66,7 @@ pub fn run(args: &ShaderArgs) -> Result<(), CliError> {
                  the module"
             )));
         }
-        let mut stdout = io::stdout().lock();
-        stdout.write_all(&text)?;
-        return Ok(stdout.flush()?);
+        return with_stdout(|out| out.write_all(&text).map_err(CliError::stdout));
     };
     write_files(
         out.parent().unwrap_or(Path::new(".")),
@@ -101,9 +98,9 @@ fn write_files(dir: &Path, files: &[CommittedFile]) -> Result<(), CliError> {
     } else {
         dir
     };
-    fs::create_dir_all(dir)?;
+    create_dir(dir)?;
     for f in files {
-        fs::write(dir.join(&f.name), &f.contents)?;
+        write_file(&dir.join(&f.name), &f.contents)?;
     }
     Ok(())
 }

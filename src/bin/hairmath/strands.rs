@@ -96,7 +96,8 @@ pub fn run_groom(args: &GroomArgs) -> Result<(), CliError> {
         args.out.display(),
         file.strands.strand_count(),
         file.strands.point_count()
-    )?;
+    )
+    .map_err(CliError::stdout)?;
     Ok(())
 }
 
@@ -227,9 +228,11 @@ pub fn run_bake(args: &BakeArgs) -> Result<(), CliError> {
         baked.lmax,
         settings.baker.name(),
         args.out.display()
-    )?;
+    )
+    .map_err(CliError::stdout)?;
     if let Some(comparison) = &comparison {
-        writeln!(out, "{}", comparison_table(comparison, args.directions))?;
+        writeln!(out, "{}", comparison_table(comparison, args.directions))
+            .map_err(CliError::stdout)?;
     }
     Ok(())
 }
