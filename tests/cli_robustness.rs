@@ -106,8 +106,15 @@ fn subcommands() -> Vec<String> {
 }
 
 /// The fast subcommands of [`closed_output_and_full_disk`] and the slow ones, by name.
-const FAST: [&str; 7] = [
-    "bake", "eval", "gaunt", "groom", "lut", "shader", "wigner3j",
+const FAST: [&str; 8] = [
+    "bake",
+    "eval",
+    "gaunt",
+    "groom",
+    "lut",
+    "render-gerard",
+    "shader",
+    "wigner3j",
 ];
 const SLOW: [&str; 4] = ["fit", "models", "plan", "report"];
 
@@ -174,6 +181,8 @@ fn fast_subcommands_survive_a_closed_pipe_and_a_full_disk() {
     assert!(made.status.success(), "{}", stderr(&made));
     let lut_dir = scratch("closed-lut");
     let bake_dir = scratch("closed-bake");
+    let render_dir = scratch("closed-render");
+    let render_arg = render_dir.to_string_lossy().into_owned();
     let groom_out = scratch("closed-groom.hair");
     let (lut_arg, bake_arg, groom_arg) = (
         lut_dir.to_string_lossy().into_owned(),
@@ -225,12 +234,25 @@ fn fast_subcommands_survive_a_closed_pipe_and_a_full_disk() {
             vec!["bake", "--lmax", "1", "--out", &bake_arg, &hair_arg],
             vec![],
         ),
+        (
+            vec![
+                "render-gerard",
+                "--size",
+                "6",
+                "--directions",
+                "16",
+                "--out",
+                &render_arg,
+                &hair_arg,
+            ],
+            vec![],
+        ),
     ];
     let names: Vec<&str> = commands.iter().map(|(a, _)| a[0]).collect();
     assert_eq!(names.len(), FAST.len());
     assert!(FAST.iter().all(|n| names.contains(n)));
     closed_output_and_full_disk(&commands);
-    for dir in [&lut_dir, &bake_dir] {
+    for dir in [&lut_dir, &bake_dir, &render_dir] {
         let _ = std::fs::remove_dir_all(dir);
     }
     for file in [&hair, &groom_out] {
@@ -307,6 +329,12 @@ fn unwritable_files_are_named() {
 fn endless_lines_are_refused() {
     let o = run(&["plan", "/dev/zero"], b"");
     assert_fails_with(&o, &["/dev/zero:0: ", "longer than 1048576 bytes"]);
+    // A .hair file is read up to 2 GiB, no further.
+    let o = run(
+        &["bake", "--out", "/tmp/hairmath-never-written", "/dev/zero"],
+        b"",
+    );
+    assert_fails_with(&o, &["/dev/zero: longer than 2147483648 bytes"]);
     let zeros = vec![0_u8; 8 << 20];
     let o = run(&["wigner3j"], &zeros);
     assert_fails_with(&o, &["line 1: the line is longer than 1048576 bytes"]);

@@ -178,3 +178,95 @@ fn bad_files_and_settings_say_what_was_wrong() {
         let _ = std::fs::remove_file(path);
     }
 }
+
+#[test]
+fn render_gerard_writes_the_images_and_their_errors() {
+    let hair = scratch("render.hair");
+    let dir = scratch("render");
+    let (hair_arg, dir_arg) = (
+        hair.to_string_lossy().into_owned(),
+        dir.to_string_lossy().into_owned(),
+    );
+    hairmath(&[
+        "groom",
+        "--kind",
+        "wavy",
+        "--strands",
+        "150",
+        "--points",
+        "8",
+        "--seed",
+        "2",
+        "--out",
+        &hair_arg,
+    ]);
+    let printed = hairmath(&[
+        "render-gerard",
+        &hair_arg,
+        "--phase-lmax",
+        "2",
+        "--v-lmax",
+        "2",
+        "--size",
+        "16",
+        "--directions",
+        "128",
+        "--out",
+        &dir_arg,
+    ]);
+    assert!(printed.contains("gerard: rmse"), "{printed}");
+    let errors: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("errors.json")).unwrap()).unwrap();
+    for value in [
+        &errors["rmse"],
+        &errors["relative_error"],
+        &errors["kajiya_kay"]["rmse"],
+        &errors["kajiya_kay"]["relative_error"],
+        &errors["reference_convergence"]["relative_error"],
+    ] {
+        let v = value.as_f64().unwrap_or(f64::NAN);
+        assert!(v.is_finite() && v >= 0.0, "{errors}");
+    }
+    assert_eq!(errors["phase_lmax"], 2);
+    assert_eq!(errors["environment_lmax"], 4);
+    for (name, width) in [
+        ("reference.png", 16),
+        ("gerard.png", 16),
+        ("kajiya_kay.png", 16),
+        ("difference.png", 16),
+        ("side_by_side.png", 48),
+    ] {
+        let bytes = std::fs::read(dir.join(name)).unwrap();
+        assert_eq!(&bytes[1..4], b"PNG", "{name}");
+        // The IHDR chunk's width, big-endian, at byte 16.
+        assert_eq!(
+            u32::from_be_bytes(bytes[16..20].try_into().unwrap()),
+            width,
+            "{name}"
+        );
+    }
+    let message = fails(&[
+        "render-gerard",
+        &hair_arg,
+        "--phase-lmax",
+        "7",
+        "--out",
+        &dir_arg,
+    ]);
+    assert!(
+        message.contains("phase_lmax") && message.contains("[1, 4]"),
+        "{message}"
+    );
+    let message = fails(&[
+        "render-gerard",
+        &hair_arg,
+        "--rgba8",
+        "--phase-lmax",
+        "2",
+        "--out",
+        &dir_arg,
+    ]);
+    assert!(message.contains("rgba8"), "{message}");
+    let _ = std::fs::remove_dir_all(&dir);
+    let _ = std::fs::remove_file(&hair);
+}

@@ -107,7 +107,11 @@ impl GerardConfig {
         (self.phase_lmax + self.v_lmax).min(5)
     }
 
-    fn check(&self) -> Result<(), ParamError> {
+    /// Checks every field against its domain.
+    ///
+    /// # Errors
+    /// [`ParamError::OutOfRange`] naming the first field outside its domain.
+    pub fn check(&self) -> Result<(), ParamError> {
         ParamError::check(
             "phase_lmax",
             self.phase_lmax as f64,

@@ -297,6 +297,18 @@ pub enum HairFileError {
         /// The NUL's index in the text.
         index: usize,
     },
+    /// The file is longer than [`MAX_HAIR_FILE_BYTES`] (read no further).
+    #[error(
+        "{}: longer than {max} bytes, the most a .hair file may have here (67 million points \
+         with every array)",
+        .path.display()
+    )]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// [`MAX_HAIR_FILE_BYTES`].
+        max: u64,
+    },
     /// Reading or writing the file failed.
     #[error("{}: {source}", .path.display())]
     Io {
@@ -308,7 +320,8 @@ pub enum HairFileError {
 }
 
 impl HairFileError {
-    /// The field the error is about, as the format names it (`None` for an I/O error).
+    /// The field the error is about, as the format names it (`None` for an I/O error or a file
+    /// too large).
     pub fn field(&self) -> Option<&'static str> {
         match self {
             Self::Signature { .. } => Some("signature"),
@@ -321,13 +334,13 @@ impl HairFileError {
             | Self::BadValue { field, .. }
             | Self::TrailingBytes { field, .. }
             | Self::TooMany { field, .. } => Some(*field),
-            Self::Io { .. } => None,
+            Self::TooLarge { .. } | Self::Io { .. } => None,
         }
     }
 
     /// The byte offset in the file the error is about (`None` for an I/O error): the field's
-    /// offset, a bad value's own offset, where trailing bytes start, or where a NUL in the info
-    /// would be written.
+    /// offset, a bad value's own offset, where trailing bytes start, where a NUL in the info
+    /// would be written, or where reading stopped in a file too large.
     pub fn offset(&self) -> Option<u64> {
         match self {
             Self::Signature { .. } => Some(0),
@@ -341,6 +354,7 @@ impl HairFileError {
             | Self::BadValue { offset, .. }
             | Self::TrailingBytes { offset, .. }
             | Self::TooMany { offset, .. } => Some(*offset),
+            Self::TooLarge { max, .. } => Some(*max),
             Self::Io { .. } => None,
         }
     }
@@ -407,15 +421,32 @@ pub fn read_hair(bytes: &[u8]) -> Result<HairFile, HairFileError> {
 /// Reads the `.hair` file at `path`.
 ///
 /// # Errors
-/// [`HairFileError::Io`] naming the path if the file cannot be read; otherwise as
+/// [`HairFileError::Io`] naming the path if the file cannot be read,
+/// [`HairFileError::TooLarge`] if it is longer than [`MAX_HAIR_FILE_BYTES`]; otherwise as
 /// [`read_hair`].
 pub fn read_hair_file(path: &Path) -> Result<HairFile, HairFileError> {
-    let bytes = std::fs::read(path).map_err(|source| HairFileError::Io {
+    use std::io::Read;
+    let io = |source| HairFileError::Io {
         path: path.to_owned(),
         source,
-    })?;
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_HAIR_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() as u64 > MAX_HAIR_FILE_BYTES {
+        return Err(HairFileError::TooLarge {
+            path: path.to_owned(),
+            max: MAX_HAIR_FILE_BYTES,
+        });
+    }
     read_hair(&bytes)
 }
+
+/// The longest `.hair` file [`read_hair_file`] reads: 2 GiB (67 million points with every
+/// array), so that a stream without end (`/dev/zero`) is refused after a bounded read.
+pub const MAX_HAIR_FILE_BYTES: u64 = 1 << 31;
 
 /// Writes strands as the bytes of a `.hair` file: an array exactly where the strands hold
 /// [`SegmentCounts::PerStrand`] or [`PointAttribute::PerPoint`], the header default where they

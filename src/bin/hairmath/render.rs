@@ -115,6 +115,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
             .map_or(defaults.baker, |directions| Baker::Exact { directions }),
         ..defaults
     };
+    config.check()?;
     let start = Instant::now();
     let kajiya_kay = kajiya_kay_best_fit(&hair, FIT_PAIRS)?;
     let gerard_source = gerard_source_best_fit(&hair, FIT_PAIRS)?;
@@ -164,24 +165,26 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         config.absorption.name(),
         if config.rgba8 { ", RGBA8 tables" } else { "" },
         args.out.display()
-    )?;
+    ).map_err(CliError::stdout)?;
     let mean = |image: &hairmath::render::Image| {
         let [r, g, b] = image.mean();
         format!("mean radiance ({r:.4}, {g:.4}, {b:.4})")
     };
-    writeln!(out, "reference: {}", mean(&comparison.reference))?;
+    writeln!(out, "reference: {}", mean(&comparison.reference)).map_err(CliError::stdout)?;
     writeln!(
         out,
         "{}, {}",
         line("gerard", &gerard.error),
         mean(&gerard.image)
-    )?;
+    )
+    .map_err(CliError::stdout)?;
     writeln!(
         out,
         "{}, {}",
         line("kajiya-kay", &comparison.kajiya_kay_error),
         mean(&comparison.kajiya_kay)
-    )?;
+    )
+    .map_err(CliError::stdout)?;
     let half = (args.directions / 2).max(1);
     writeln!(
         out,
@@ -191,7 +194,8 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
             &comparison.reference_convergence
         ),
         gerard.error_against_half.relative_error
-    )?;
+    )
+    .map_err(CliError::stdout)?;
     Ok(())
 }
 
