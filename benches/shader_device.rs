@@ -67,19 +67,7 @@ fn device_cost(c: &mut Criterion) {
         let queries = rows(stride);
         let textures = gpu::textures_of(&shader.module);
         group.bench_function(shader.model, |b| {
-            b.iter_custom(|iters| {
-                let per_eval = device
-                    .time_per_eval(
-                        &wgsl,
-                        "hair_main",
-                        &queries,
-                        stride,
-                        &textures,
-                        iters as usize,
-                    )
-                    .expect("the dispatch runs");
-                Duration::from_secs_f64(per_eval * ROWS as f64 * iters as f64)
-            })
+            b.iter_custom(|iters| dispatch_time(device, &wgsl, &queries, stride, &textures, iters))
         });
     }
     group.finish();
@@ -117,22 +105,25 @@ fn gerard_cost(device: &gpu::Device) {
         let textures = gpu::textures_of(&module);
         let name = format!("phase_l{phase_lmax}_v_l{v_lmax}");
         group.bench_function(name, |b| {
-            b.iter_custom(|iters| {
-                let per_eval = device
-                    .time_per_eval(
-                        &wgsl,
-                        "hair_main",
-                        &queries,
-                        stride,
-                        &textures,
-                        iters as usize,
-                    )
-                    .expect("the dispatch runs");
-                Duration::from_secs_f64(per_eval * ROWS as f64 * iters as f64)
-            })
+            b.iter_custom(|iters| dispatch_time(device, &wgsl, &queries, stride, &textures, iters))
         });
     }
     group.finish();
+}
+
+/// The time of `iters` dispatches of `wgsl`'s `hair_main` over `queries` ([`ROWS`] rows).
+fn dispatch_time(
+    device: &gpu::Device,
+    wgsl: &str,
+    queries: &[f32],
+    stride: usize,
+    textures: &[gpu::GpuTexture],
+    iters: u64,
+) -> Duration {
+    let per_eval = device
+        .time_per_eval(wgsl, "hair_main", queries, stride, textures, iters as usize)
+        .expect("the dispatch runs");
+    Duration::from_secs_f64(per_eval * ROWS as f64 * iters as f64)
 }
 
 /// `ROWS` rows of Gerard's arguments: the pairs of a Kronecker set as tangent and viewer, the
