@@ -20,7 +20,7 @@ use hairmath::diagnostics::DirectionPairs;
 use hairmath::models::gerard_sh::SHADE_FUNCTION;
 use hairmath::params::HairParams;
 use hairmath::render::{
-    gerard_graph, gerard_source_mapped, GerardConfig, PhaseAbsorption, RenderSettings,
+    gerard_graph, GerardConfig, GerardSources, PhaseAbsorption, RenderSettings,
 };
 use hairmath::shader::example_shaders;
 use std::time::Duration;
@@ -85,12 +85,25 @@ fn gerard_cost(device: &gpu::Device) {
     group.measurement_time(Duration::from_secs(4));
     group.throughput(Throughput::Elements(ROWS as u64));
     let settings = RenderSettings::default();
-    let source = gerard_source_mapped(&HairParams::default()).expect("the default hair maps");
-    for (phase_lmax, v_lmax) in [(1, 2), (2, 2), (4, 2), (4, 4)] {
+    let source = GerardSources::mapped(&HairParams::default())
+        .expect("the default hair maps")
+        .published;
+    let published = PhaseAbsorption::Published;
+    let tabulated = PhaseAbsorption::Tabulated;
+    for (phase_lmax, v_lmax, absorption) in [
+        (1, 2, published),
+        (2, 2, published),
+        (3, 2, published),
+        (4, 2, published),
+        (1, 4, published),
+        (4, 4, published),
+        (1, 2, tabulated),
+        (4, 4, tabulated),
+    ] {
         let config = GerardConfig {
             phase_lmax,
             v_lmax,
-            absorption: PhaseAbsorption::Published,
+            absorption,
             rgba8: false,
             bias: 0.0,
         };
@@ -103,7 +116,7 @@ fn gerard_cost(device: &gpu::Device) {
             .expect("WGSL");
         let queries = gerard_rows(stride);
         let textures = gpu::textures_of(&module);
-        let name = format!("phase_l{phase_lmax}_v_l{v_lmax}");
+        let name = format!("phase_l{phase_lmax}_v_l{v_lmax}_{}", absorption.name());
         group.bench_function(name, |b| {
             b.iter_custom(|iters| dispatch_time(device, &wgsl, &queries, stride, &textures, iters))
         });

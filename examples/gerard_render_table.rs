@@ -7,14 +7,14 @@
 //! Run: `cargo run --release --example gerard_render_table [SIZE] [DIRECTIONS]`
 //! (defaults 128 and 8192; tens of minutes on two cores).
 
-use hairmath::bcsdf::{trace_eval, Marschner2003};
+use hairmath::bcsdf::trace_eval;
 use hairmath::diagnostics::OpCounts;
 use hairmath::params::HairParams;
 use hairmath::plan::OpWeights;
 use hairmath::render::{
-    compare_gerard, gerard_ops, gerard_source_best_fit, gerard_source_mapped, kajiya_kay_best_fit,
-    Approximations, DirectionalLight, GerardComparison, GerardConfig, GerardScene, PhaseAbsorption,
-    RenderSettings, Sky,
+    compare_gerard, gerard_ops, kajiya_kay_best_fit, Approximations, DirectionalLight,
+    GerardComparison, GerardConfig, GerardScene, GerardSources, PhaseAbsorption, RenderSettings,
+    Sky,
 };
 use hairmath::strands::groom::{groom, GroomKind, GroomSettings};
 use hairmath::strands::occluders::Opacity;
@@ -38,13 +38,13 @@ fn config(
 fn rows(
     label: &str,
     comparison: &GerardComparison,
-    source: &Marschner2003,
+    sources: &GerardSources,
     settings: &RenderSettings,
     kk_cost: f64,
 ) -> Result<(), Box<dyn std::error::Error>> {
     for r in &comparison.gerard {
         let c = r.config;
-        let ops = OpWeights::DEFAULT.cost(&gerard_ops(source, &c, settings)?);
+        let ops = OpWeights::DEFAULT.cost(&gerard_ops(sources.of(c.absorption), &c, settings)?);
         let rgba8 = if c.rgba8 { ", RGBA8" } else { "" };
         println!(
             "| Gerard ({label}), {}{rgba8} | {} | {} | {} | {:.4} | {:.4} | {:.5} | {ops:.0} | {:.1} |",
@@ -100,15 +100,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     };
     let kajiya_kay = kajiya_kay_best_fit(&hair, 4096)?;
-    let best = gerard_source_best_fit(&hair, 4096)?;
-    let mapped = gerard_source_mapped(&hair)?;
+    let best = GerardSources::best_fit(&hair, 4096)?;
+    let mapped = GerardSources::mapped(&hair)?;
     let fitted = Approximations {
-        gerard_source: &best,
+        gerard_sources: &best,
         kajiya_kay: &kajiya_kay,
     };
     let comparison = compare_gerard(&scene, &configs, &settings, &fitted, &progress)?;
     let at_mapping = Approximations {
-        gerard_source: &mapped,
+        gerard_sources: &mapped,
         ..fitted
     };
     let mapped_configs = [config(1, 2, PhaseAbsorption::Published, false)];
@@ -144,7 +144,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         comparison.kajiya_kay_error.relative_error,
         comparison.kajiya_kay_error.rmse
     );
-    println!("best-fit Gerard source: {best:?}");
+    println!("best-fit Gerard sources: {best:?}");
     println!("best-fit Kajiya-Kay: {kajiya_kay:?}");
     println!("total {:.1} s", start.elapsed().as_secs_f64());
     Ok(())

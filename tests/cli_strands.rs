@@ -228,6 +228,25 @@ fn render_gerard_writes_the_images_and_their_errors() {
         assert!(v.is_finite() && v >= 0.0, "{errors}");
     }
     assert_eq!(errors["phase_lmax"], 2);
+    // The projection error per band limit: five limits of three lobes, each in [0, 1], and
+    // no limit loses more than the one below it (Parseval: each band adds energy).
+    let at = errors["phase_projection_error"]["at"].as_array().unwrap();
+    assert_eq!(at.len(), 4, "{errors}");
+    for point in at {
+        let bands = point["by_band_limit"].as_array().unwrap();
+        assert_eq!(bands.len(), 5, "{point}");
+        let lobe = |l: usize, p: usize| bands[l][p].as_f64().unwrap();
+        for p in 0..3 {
+            assert!((0.0..=1.0).contains(&lobe(0, p)), "{point}");
+            for l in 1..5 {
+                assert!(lobe(l, p) <= lobe(l - 1, p) + 1e-12, "{point}");
+            }
+        }
+    }
+    assert!(
+        printed.contains("phase projection error at l <= 2"),
+        "{printed}"
+    );
     assert_eq!(errors["environment_lmax"], 4);
     for (name, width) in [
         ("reference.png", 16),

@@ -19,9 +19,8 @@ use hairmath::params::HairParams;
 use hairmath::quadrature::SphereRule;
 use hairmath::render::shading::{interpolated_transmittance, reference_radiance, ClassicShading};
 use hairmath::render::{
-    compare_gerard, first_hits, gerard_ops, gerard_source_mapped, image_error, Approximations,
-    Camera, DirectionalLight, GerardConfig, GerardScene, Hit, Image, PhaseAbsorption,
-    RenderSettings, Sky,
+    compare_gerard, first_hits, gerard_ops, image_error, Approximations, Camera, DirectionalLight,
+    GerardConfig, GerardScene, GerardSources, Hit, Image, PhaseAbsorption, RenderSettings, Sky,
 };
 use hairmath::strands::groom::{groom, GroomKind, GroomSettings};
 use hairmath::strands::occluders::{Occluders, Opacity};
@@ -267,9 +266,9 @@ fn the_comparison_renders_a_small_groom() {
         config(1, PhaseAbsorption::Tabulated, false),
     ];
     let settings = small_settings();
-    let source = gerard_source_mapped(&scene.hair).unwrap();
+    let sources = GerardSources::mapped(&scene.hair).unwrap();
     let models = Approximations {
-        gerard_source: &source,
+        gerard_sources: &sources,
         kajiya_kay: &kajiya_kay,
     };
     let c = compare_gerard(&scene, &configs, &settings, &models, &|_, _, _| {}).unwrap();
@@ -327,7 +326,9 @@ fn the_shading_costs_grow_with_the_bands() {
         quadrature: PhaseQuadrature { n_z: 16, n_phi: 32 },
         ..small_settings()
     };
-    let source = gerard_source_mapped(&HairParams::default()).unwrap();
+    let source = GerardSources::mapped(&HairParams::default())
+        .unwrap()
+        .published;
     let cost = |l, v| {
         let ops = gerard_ops(
             &source,
@@ -345,4 +346,52 @@ fn the_shading_costs_grow_with_the_bands() {
         l1v2 > 100 && l1v2 < l2v2 && l2v2 < l4v4,
         "{l1v2} {l2v2} {l4v4}"
     );
+}
+
+/// Each absorption variant is fitted with its own attenuation: the refit source minimises E
+/// of Gerard's direct model with the refit exponents, so that model is no worse there than at
+/// the published variant's source (which was fitted for the published exponents), and the
+/// tabulated variant's source minimises Marschner et al. 2003's own E, no worse than at the
+/// published source.
+#[test]
+fn each_absorption_variant_is_fitted_at_its_own_inputs() {
+    use hairmath::bcsdf::{AbsorptionInput, FromInputs, InputValue, Marschner2003};
+    use hairmath::diagnostics::{DirectionPairs, ReferenceSamples};
+    use hairmath::models::{Approximation, Gerard};
+    let hair = HairParams::default();
+    let pairs = 1024;
+    let fitted = GerardSources::best_fit(&hair, pairs).unwrap();
+    let reference = ReferenceSamples::new(&far_field(), DirectionPairs::kronecker(pairs));
+    // Gerard's direct model with `refit` exponents from the absorption of `source`.
+    let gerard_error = |source: &Marschner2003, refit: bool| {
+        let mut inputs = Gerard::<f64>::mapped_inputs(&hair);
+        let number = |x: f64| InputValue::Number(x);
+        inputs.set("alpha_r", number(source.lobes.alpha_r.get()));
+        inputs.set("beta_r", number(source.lobes.beta_r.get()));
+        let sigma_a = AbsorptionInput::SigmaA(source.sigma_a.rgb());
+        inputs.set("sigma_a", InputValue::Absorption(sigma_a));
+        inputs.set("refit_absorption", InputValue::Switch(refit));
+        reference
+            .relative_error(&Gerard::from_inputs(&inputs).unwrap())
+            .full
+    };
+    let published = gerard_error(&fitted.published, false);
+    let refit = gerard_error(&fitted.refit, true);
+    let refit_at_published = gerard_error(&fitted.published, true);
+    assert!(
+        refit <= refit_at_published * (1.0 + 1e-9),
+        "{refit} {refit_at_published}"
+    );
+    assert!(published.is_finite() && refit.is_finite());
+    let tabulated = reference.relative_error(&fitted.tabulated).full;
+    let tabulated_at_published = reference.relative_error(&fitted.published).full;
+    println!("E: published {published:.4}, refit {refit:.4} (at the published source {refit_at_published:.4}), Marschner {tabulated:.4} (at the published source {tabulated_at_published:.4})");
+    assert!(
+        tabulated <= tabulated_at_published * (1.0 + 1e-9),
+        "{tabulated} {tabulated_at_published}"
+    );
+    assert_ne!(fitted.published.sigma_a, fitted.refit.sigma_a);
+    let mapped = GerardSources::mapped(&hair).unwrap();
+    assert_eq!(mapped.published, mapped.tabulated);
+    assert_eq!(mapped.of(PhaseAbsorption::Refit), &mapped.refit);
 }

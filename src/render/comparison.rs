@@ -12,8 +12,11 @@ use crate::bcsdf::{Bcsdf, ChiangFarField, FarFieldRule, FromInputs, Marschner200
 use crate::diagnostics::OpCounts;
 use crate::error::ParamError;
 use crate::models::gerard_sh::{
-    trace_shade, AbsorbingPhaseTable, GerardSh, PhaseQuadrature, PhaseTable, PhaseTables,
+    projection_error, trace_shade, AbsorbingPhaseTable, GerardSh, PhaseQuadrature, PhaseTable,
+    PhaseTables,
 };
+#[cfg(feature = "fit")]
+use crate::models::marschner_inputs_of;
 use crate::models::{
     Approximation, Gerard, GerardLobe, GERARD_ABSORPTION_K_TRT, GERARD_ABSORPTION_K_TT,
     GERARD_K_TRT, GERARD_K_TT, GERARD_REFIT_ENTRY,
@@ -44,19 +47,82 @@ pub struct GerardScene<'a> {
 /// The approximations measured against the reference.
 #[derive(Clone, Copy)]
 pub struct Approximations<'a> {
-    /// The hair of Gerard's model (Marschner's parameters: Gerard's section 2.1 builds on
-    /// Marschner et al. 2003): [`gerard_source_mapped`] or [`gerard_source_best_fit`].
-    pub gerard_source: &'a Marschner2003,
+    /// The hair of Gerard's model per absorption variant (Marschner's parameters: Gerard's
+    /// section 2.1 builds on Marschner et al. 2003): [`GerardSources::mapped`] or
+    /// [`GerardSources::best_fit`].
+    pub gerard_sources: &'a GerardSources,
     /// The classic model (Kajiya-Kay: [`kajiya_kay_best_fit`]).
     pub kajiya_kay: &'a (dyn Bcsdf<f64> + Sync),
 }
 
-/// The hair of Gerard's model at his mapping of `hair` ([`Approximation::mapped_inputs`]).
-///
-/// # Errors
-/// As [`Marschner2003::from_inputs`].
-pub fn gerard_source_mapped(hair: &HairParams) -> Result<Marschner2003, ParamError> {
-    Marschner2003::from_inputs(&Gerard::mapped_inputs(hair))
+/// The hair Gerard's shading is built from, one per [`PhaseAbsorption`] variant, so that each
+/// variant can be measured at its own best inputs: the absorption `sigma_a` that minimises E
+/// with eq. 14's published exponents is not the one that does with the refit exponents, nor
+/// with the attenuation tabulated exactly.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GerardSources {
+    /// For [`PhaseAbsorption::Published`].
+    pub published: Marschner2003,
+    /// For [`PhaseAbsorption::Refit`].
+    pub refit: Marschner2003,
+    /// For [`PhaseAbsorption::Tabulated`].
+    pub tabulated: Marschner2003,
+}
+
+impl GerardSources {
+    /// The source of the variant `absorption`.
+    pub fn of(&self, absorption: PhaseAbsorption) -> &Marschner2003 {
+        match absorption {
+            PhaseAbsorption::Published => &self.published,
+            PhaseAbsorption::Refit => &self.refit,
+            PhaseAbsorption::Tabulated => &self.tabulated,
+        }
+    }
+
+    /// Every variant at Gerard's mapping of `hair` ([`Approximation::mapped_inputs`]).
+    ///
+    /// # Errors
+    /// As [`Marschner2003::from_inputs`].
+    pub fn mapped(hair: &HairParams) -> Result<Self, ParamError> {
+        let mapped = Marschner2003::from_inputs(&Gerard::mapped_inputs(hair))?;
+        Ok(Self {
+            published: mapped,
+            refit: mapped,
+            tabulated: mapped,
+        })
+    }
+
+    /// Each variant at its best-fit inputs for `hair` (`alpha_r`, `beta_r` and `sigma_a`
+    /// fitted by E against the Chiang far field on `pairs` direction pairs): Gerard's direct
+    /// model with the published exponents, with the refit ones (its switch
+    /// `refit_absorption`), and Marschner et al. 2003 itself for the tabulated variant (its
+    /// Gaussian lobes and exact attenuation are what the table holds). Gerard's shading at its
+    /// most accurate, as Kajiya-Kay is compared at its own.
+    ///
+    /// # Errors
+    /// As the fits.
+    #[cfg(feature = "fit")]
+    pub fn best_fit(hair: &HairParams, pairs: usize) -> Result<Self, crate::fit::FitError> {
+        use crate::bcsdf::InputValue;
+        let gerard = Gerard::<f64>::mapped_inputs(hair);
+        let mut refit = gerard.clone();
+        refit.set("refit_absorption", InputValue::Switch(true));
+        let fitted = |name: &str, start| {
+            Marschner2003::from_inputs(&best_fit_inputs(
+                name,
+                Gerard::FITTED_INPUTS,
+                start,
+                hair,
+                pairs,
+            )?)
+            .map_err(crate::fit::FitError::from)
+        };
+        Ok(Self {
+            published: fitted(Gerard::NAME, &gerard)?,
+            refit: fitted(Gerard::NAME, &refit)?,
+            tabulated: fitted(Marschner2003::NAME, &marschner_inputs_of(hair))?,
+        })
+    }
 }
 
 /// How Gerard's phase function handles absorption.
@@ -74,6 +140,18 @@ pub enum PhaseAbsorption {
 }
 
 impl PhaseAbsorption {
+    /// Eq. 14's exponents `[k_TT, k_TRT]` of the variant (the published ones for the
+    /// tabulated variant's direct light, which eq. 9 shades with Gerard's model).
+    pub fn exponents(self) -> [f64; 2] {
+        match self {
+            PhaseAbsorption::Refit => [
+                GERARD_ABSORPTION_K_TT[GERARD_REFIT_ENTRY],
+                GERARD_ABSORPTION_K_TRT[GERARD_REFIT_ENTRY],
+            ],
+            PhaseAbsorption::Published | PhaseAbsorption::Tabulated => [GERARD_K_TT, GERARD_K_TRT],
+        }
+    }
+
     /// Its name in the command line and the JSON (`published`, `refit`, `tabulated`).
     pub fn name(self) -> &'static str {
         match self {
@@ -281,7 +359,11 @@ pub fn compare_gerard(
     let mut gerard = Vec::with_capacity(configs.len());
     for config in configs {
         progress(Stage::PhaseTables, 0, 1);
-        let shading = GerardShading::new(models.gerard_source, config, settings)?;
+        let shading = GerardShading::new(
+            models.gerard_sources.of(config.absorption),
+            config,
+            settings,
+        )?;
         let sky = scene.sky.coefficients(config.environment_lmax())?;
         let shade = |hit: &Hit| {
             let v = interpolated_transmittance(hit, &baked, config.v_lmax)?;
@@ -392,17 +474,10 @@ fn build<const C: usize>(
     config: &GerardConfig,
     settings: &RenderSettings,
 ) -> Result<GerardSh<f64, C>, ParamError> {
-    let k = match config.absorption {
-        PhaseAbsorption::Refit => [
-            GERARD_ABSORPTION_K_TT[GERARD_REFIT_ENTRY],
-            GERARD_ABSORPTION_K_TRT[GERARD_REFIT_ENTRY],
-        ],
-        PhaseAbsorption::Published | PhaseAbsorption::Tabulated => [GERARD_K_TT, GERARD_K_TRT],
-    };
     let shading = GerardSh::new(
         source,
         GerardLobe::Printed,
-        k,
+        config.absorption.exponents(),
         config.bias,
         settings.phase_samples,
         &settings.quadrature,
@@ -462,23 +537,49 @@ pub fn gerard_ops(
     Ok(OpCounts::of(&gerard_graph(source, config, settings)?))
 }
 
-/// The inputs of the registered model `M` minimising its error E against `hair`'s Chiang far
-/// field (64 nodes) on `pairs` direction pairs of a Kronecker set
-/// ([`crate::fit::fit_model_inputs`] from the mapped inputs).
+/// What the phase function of `config` (from `source`) loses by its truncation to bands
+/// `l <= L`, per `L = 0..=4` and per lobe (R, TT, TRT), at `sin theta_r = s`
+/// ([`projection_error`]): for eq. 14's variants the lobes of Gerard's model without
+/// absorption, which the tables hold (eq. 14 scales them at shading time); for the tabulated
+/// variant Marschner et al. 2003 at `source`'s absorption.
+///
+/// # Errors
+/// As [`projection_error`], or if `source`'s model cannot be built.
+pub fn phase_projection_error(
+    source: &Marschner2003,
+    absorption: PhaseAbsorption,
+    s: f64,
+    quadrature: &PhaseQuadrature,
+) -> Result<Vec<Vec<f64>>, ParamError> {
+    let lmax = crate::models::gerard_sh::MAX_PHASE_LMAX;
+    if absorption == PhaseAbsorption::Tabulated {
+        return projection_error(source, s, lmax, quadrature);
+    }
+    let clear = Marschner2003 {
+        sigma_a: Absorption::new([0.0; 3])?,
+        ..*source
+    };
+    let [k_tt, k_trt] = absorption.exponents();
+    let model = Gerard::new(&clear, GerardLobe::Printed, k_tt, k_trt)?;
+    projection_error(&model, s, lmax, quadrature)
+}
+
+/// The inputs of the registered model `name` minimising its error E against `hair`'s Chiang
+/// far field (64 nodes) on `pairs` direction pairs of a Kronecker set
+/// ([`crate::fit::fit_model_inputs`] of the inputs `fitted`, from `start`).
 #[cfg(feature = "fit")]
-fn best_fit_inputs<M: Approximation + FromInputs>(
+fn best_fit_inputs(
+    name: &str,
+    fitted: &[&'static str],
+    start: &crate::bcsdf::InputValues,
     hair: &HairParams,
     pairs: usize,
 ) -> Result<crate::bcsdf::InputValues, crate::fit::FitError> {
     use crate::diagnostics::{DirectionPairs, ReferenceSamples};
     let reference = ChiangFarField::with_rule(hair, &FarFieldRule::gauss_legendre(64)?);
     let samples = ReferenceSamples::new(&reference, DirectionPairs::kronecker(pairs));
-    let entry = crate::registry::MODELS
-        .iter()
-        .find(|m| m.name == M::NAME)
-        .expect("the approximations are registered");
-    let start = M::mapped_inputs(hair);
-    let fit = crate::fit::fit_model_inputs(entry, M::FITTED_INPUTS, &start, &samples)?;
+    let entry = crate::registry::find_model(name).expect("the models measured are registered");
+    let fit = crate::fit::fit_model_inputs(entry, fitted, start, &samples)?;
     Ok(fit.values)
 }
 
@@ -492,23 +593,13 @@ pub fn kajiya_kay_best_fit(
     pairs: usize,
 ) -> Result<crate::models::KajiyaKay<f64>, crate::fit::FitError> {
     use crate::models::KajiyaKay;
-    Ok(KajiyaKay::from_inputs(&best_fit_inputs::<KajiyaKay<f64>>(
-        hair, pairs,
-    )?)?)
-}
-
-/// The hair of Gerard's model at its best-fit inputs for `hair` (`alpha_r`, `beta_r` and the
-/// absorption fitted by E against the Chiang far field on `pairs` direction pairs): Gerard's
-/// direct lighting at its most accurate, as Kajiya-Kay is compared at its own.
-///
-/// # Errors
-/// As the fit.
-#[cfg(feature = "fit")]
-pub fn gerard_source_best_fit(
-    hair: &HairParams,
-    pairs: usize,
-) -> Result<Marschner2003, crate::fit::FitError> {
-    Ok(Marschner2003::from_inputs(
-        &best_fit_inputs::<Gerard<f64>>(hair, pairs)?,
-    )?)
+    let start = KajiyaKay::mapped_inputs(hair);
+    let fitted = best_fit_inputs(
+        KajiyaKay::NAME,
+        KajiyaKay::FITTED_INPUTS,
+        &start,
+        hair,
+        pairs,
+    )?;
+    Ok(KajiyaKay::from_inputs(&fitted)?)
 }

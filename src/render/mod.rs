@@ -29,12 +29,12 @@ mod lighting;
 pub mod shading;
 
 pub use camera::{first_hits, Camera, Hit};
-pub use comparison::{
-    compare_gerard, gerard_graph, gerard_ops, gerard_source_mapped, Approximations,
-    GerardComparison, GerardConfig, GerardRender, GerardScene, PhaseAbsorption, RenderSettings,
-    Stage,
-};
 #[cfg(feature = "fit")]
-pub use comparison::{gerard_source_best_fit, kajiya_kay_best_fit};
+pub use comparison::kajiya_kay_best_fit;
+pub use comparison::{
+    compare_gerard, gerard_graph, gerard_ops, phase_projection_error, Approximations,
+    GerardComparison, GerardConfig, GerardRender, GerardScene, GerardSources, PhaseAbsorption,
+    RenderSettings, Stage,
+};
 pub use image::{image_error, render, Image, ImageError};
 pub use lighting::{DirectionalLight, Sky};

@@ -6,9 +6,9 @@ use crate::CliError;
 use clap::{Args, ValueEnum};
 use hairmath::params::HairParams;
 use hairmath::render::{
-    compare_gerard, gerard_source_best_fit, kajiya_kay_best_fit, Approximations, DirectionalLight,
-    GerardComparison, GerardConfig, GerardRender, GerardScene, ImageError, PhaseAbsorption,
-    RenderSettings, Sky,
+    compare_gerard, kajiya_kay_best_fit, phase_projection_error, Approximations, DirectionalLight,
+    GerardComparison, GerardConfig, GerardRender, GerardScene, GerardSources, ImageError,
+    PhaseAbsorption, RenderSettings, Sky,
 };
 use hairmath::strands::hair_file::read_hair_file;
 use hairmath::strands::occluders::Opacity;
@@ -118,9 +118,9 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     config.check()?;
     let start = Instant::now();
     let kajiya_kay = kajiya_kay_best_fit(&hair, FIT_PAIRS)?;
-    let gerard_source = gerard_source_best_fit(&hair, FIT_PAIRS)?;
+    let gerard_sources = GerardSources::best_fit(&hair, FIT_PAIRS)?;
     let models = Approximations {
-        gerard_source: &gerard_source,
+        gerard_sources: &gerard_sources,
         kajiya_kay: &kajiya_kay,
     };
     let bar = progress_bar();
@@ -139,13 +139,13 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let gerard = &comparison.gerard[0];
     let seconds = start.elapsed().as_secs_f64();
     write_images(&args.out, &comparison, gerard)?;
-    let errors = errors_json(
-        args,
-        &comparison,
-        gerard,
-        (&gerard_source, &kajiya_kay),
-        seconds,
-    );
+    let source = gerard_sources.of(config.absorption);
+    let projection = PROJECTION_SIN_THETA_R
+        .iter()
+        .map(|&s| phase_projection_error(source, config.absorption, s, &settings.quadrature))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut errors = errors_json(args, &comparison, gerard, (source, &kajiya_kay), seconds);
+    errors["phase_projection_error"] = projection_json(&projection);
     let text = serde_json::to_string_pretty(&errors).expect("JSON of plain values");
     write(&args.out.join("errors.json"), text.as_bytes())?;
     let line = |name: &str, e: &ImageError| {
@@ -183,6 +183,21 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         "{}, {}",
         line("kajiya-kay", &comparison.kajiya_kay_error),
         mean(&comparison.kajiya_kay)
+    )
+    .map_err(CliError::stdout)?;
+    let at_l: Vec<String> = projection
+        .iter()
+        .zip(PROJECTION_SIN_THETA_R)
+        .map(|(bands, s)| {
+            let [r, tt, trt] = [0, 1, 2].map(|lobe| bands[config.phase_lmax][lobe]);
+            format!("{r:.3} / {tt:.3} / {trt:.3} at {s}")
+        })
+        .collect();
+    writeln!(
+        out,
+        "phase projection error at l <= {} (R / TT / TRT at sin theta_r): {}",
+        config.phase_lmax,
+        at_l.join(", ")
     )
     .map_err(CliError::stdout)?;
     let half = (args.directions / 2).max(1);
@@ -248,6 +263,22 @@ fn write_png(path: &Path, width: usize, height: usize, rgb: &[u8]) -> Result<(),
     let mut writer = encoder.write_header().map_err(fail)?;
     writer.write_image_data(rgb).map_err(fail)?;
     writer.finish().map_err(fail)
+}
+
+/// The values of `sin theta_r` at which `errors.json` reports the phase's projection error.
+const PROJECTION_SIN_THETA_R: [f64; 4] = [0.0, 0.5, 0.9, 0.99];
+
+/// `phase_projection_error` at [`PROJECTION_SIN_THETA_R`]: per value, per band limit, per lobe.
+fn projection_json(projection: &[Vec<Vec<f64>>]) -> serde_json::Value {
+    let at: Vec<_> = projection
+        .iter()
+        .zip(PROJECTION_SIN_THETA_R)
+        .map(|(bands, s)| json!({ "sin_theta_r": s, "by_band_limit": bands }))
+        .collect();
+    json!({
+        "definition": "per band limit L = 0..4 (index) and lobe [R, TT, TRT]: sqrt(int (S - S_L)^2 / int S^2), what the expansion truncated to l <= L loses against S",
+        "at": at,
+    })
 }
 
 fn error_json(e: &ImageError) -> serde_json::Value {
