@@ -395,3 +395,41 @@ fn each_absorption_variant_is_fitted_at_its_own_inputs() {
     assert_eq!(mapped.published, mapped.tabulated);
     assert_eq!(mapped.of(PhaseAbsorption::Refit), &mapped.refit);
 }
+
+/// The phase function's truncation error per band limit: within [0, 1], never larger at a
+/// higher limit (Parseval), the same for both sets of eq. 14's exponents (the tables hold the
+/// lobes without absorption, which the exponents only scale), and an error outside
+/// `sin theta_r` in [-1, 1].
+#[test]
+fn the_phase_projection_error_falls_with_the_band_limit() {
+    use hairmath::render::phase_projection_error;
+    let source = GerardSources::mapped(&HairParams::default())
+        .unwrap()
+        .published;
+    let quadrature = PhaseQuadrature::default();
+    for s in [-0.99, 0.0, 0.7, 0.99] {
+        let published =
+            phase_projection_error(&source, PhaseAbsorption::Published, s, &quadrature).unwrap();
+        let refit =
+            phase_projection_error(&source, PhaseAbsorption::Refit, s, &quadrature).unwrap();
+        let tabulated =
+            phase_projection_error(&source, PhaseAbsorption::Tabulated, s, &quadrature).unwrap();
+        assert_eq!(published, refit, "s = {s}");
+        for bands in [&published, &tabulated] {
+            assert_eq!(bands.len(), 5);
+            for lobe in 0..3 {
+                assert!((0.0..=1.0).contains(&bands[0][lobe]), "{bands:?}");
+                for l in 1..5 {
+                    assert!(bands[l][lobe] <= bands[l - 1][lobe] + 1e-12, "{bands:?}");
+                }
+                // Four bands capture a real share of every lobe.
+                assert!(bands[4][lobe] < 0.9 * bands[0][lobe], "s = {s}: {bands:?}");
+            }
+        }
+    }
+    for s in [1.5, f64::NAN] {
+        assert!(
+            phase_projection_error(&source, PhaseAbsorption::Published, s, &quadrature).is_err()
+        );
+    }
+}
