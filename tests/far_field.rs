@@ -262,3 +262,84 @@ fn roughness_integrated_np_tends_to_marschner_as_roughness_vanishes() {
 fn path(p: u32) -> hairmath::azimuthal::MarschnerPath {
     hairmath::azimuthal::MarschnerPath::from_p(p).expect("p <= 3")
 }
+
+/// S of the far field by brute force, independent of the reference integrator's breakpoints:
+/// the near field `S(wi, wo, h)` averaged over h = sin(gamma) by composite 4-point
+/// Gauss-Legendre on `panels` equal panels of gamma in [-pi/2, pi/2].
+fn brute_far_field(hair: &ChiangHair<f64>, wi: V3<f64>, wo: V3<f64>, panels: usize) -> [f64; 3] {
+    let rule = hairmath::quadrature::gauss_legendre(4);
+    let width = PI / panels as f64;
+    let mut sum = [0.0; 3];
+    for k in 0..panels {
+        let centre = -FRAC_PI_2 + (k as f64 + 0.5) * width;
+        for &(x, w) in &rule {
+            let gamma = centre + 0.5 * width * x;
+            let s = hair.eval(&Query::new(wi, wo, gamma.sin()));
+            let weight = 0.5 * width * w * 0.5 * gamma.cos();
+            for c in 0..3 {
+                sum[c] += weight * s[c];
+            }
+        }
+    }
+    sum
+}
+
+/// The reference far field against the brute-force average of the near field over h, to 1e-9
+/// of the largest channel, on the case of issue 15 (beta_n 0.9 with phi near pi and a grazing
+/// viewer: the R lobe's kink where its logistic's argument wraps was straddled by one panel,
+/// 4.8e-5 off with an error estimate of 1e-11) and on quasi-random configurations with
+/// grazing viewers, phi near 0 and pi and beta_n up to 1. The brute force is converged: 2^15
+/// and 2^16 panels agree to 1e-10.
+#[test]
+fn the_reference_is_the_near_field_averaged_over_h() {
+    let unit = |v: [f64; 3]| {
+        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        V3::new(v[0] / l, v[1] / l, v[2] / l)
+    };
+    let issue = (
+        params(0.7, 0.9, [0.5, 0.8, 1.4]),
+        unit([-0.85660, -0.00406, 0.51597]),
+        unit([0.98242, 0.02919, -0.18441]),
+    );
+    let mut cases = vec![issue];
+    let mut point = [0.0; 5];
+    for k in 0..12 {
+        hairmath::quadrature::kronecker(k, 5, &mut point);
+        let beta_n = 0.1 + 0.9 * point[0];
+        let theta_o = (2.0 * point[1] - 1.0) * 1.55;
+        let theta_i = (2.0 * point[2] - 1.0) * 1.4;
+        // phi within 0.05 of pi for every third case, of 0 for the next, anywhere otherwise.
+        let phi = match k % 3 {
+            0 => PI - 0.05 * point[3],
+            1 => 0.05 * point[3],
+            _ => (2.0 * point[3] - 1.0) * PI,
+        };
+        let sigma_a = [
+            0.2 + 2.0 * point[4],
+            0.5 + 2.0 * point[4],
+            1.0 + 4.0 * point[4],
+        ];
+        cases.push((
+            params(0.3 + 0.5 * point[4], beta_n, sigma_a),
+            local_direction(theta_i.sin(), theta_i.cos(), phi),
+            local_direction(theta_o.sin(), theta_o.cos(), 0.0),
+        ));
+    }
+    for (hair, wi, wo) in cases {
+        let hair = ChiangHair::<f64>::new(&hair);
+        let reference = hair.far_field_reference(wi, wo, 1e-10).value;
+        let coarse = brute_far_field(&hair, wi, wo, 1 << 15);
+        let fine = brute_far_field(&hair, wi, wo, 1 << 16);
+        let largest = fine.iter().copied().fold(0.0, f64::max);
+        for c in 0..3 {
+            assert!(
+                (coarse[c] - fine[c]).abs() <= 1e-10 * largest,
+                "brute force not converged: {coarse:?} {fine:?}"
+            );
+            assert!(
+                (reference[c] - fine[c]).abs() <= 1e-9 * largest,
+                "{wi:?} {wo:?}: reference {reference:?}, brute force {fine:?}"
+            );
+        }
+    }
+}

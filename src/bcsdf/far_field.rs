@@ -12,7 +12,10 @@
 //!   square-root endpoints), with Gauss-Legendre nodes; the weights are renormalised to sum to 1,
 //!   so the rule is exact for constant integrands and energy is conserved exactly.
 //! - [`ChiangHair::far_field_reference`]: adaptive, f64, with an error estimate; breakpoints at
-//!   the offsets where phi = Phi(p, h) keep the narrow peaks of low roughness resolved.
+//!   the offsets where phi = Phi(p, h) keep the narrow peaks of low roughness resolved, and
+//!   breakpoints where phi - Phi(p, h) wraps through pi keep the integrand smooth within every
+//!   panel (it has a kink there). Measured against the near field averaged over h by brute
+//!   force (2^16 panels) to 1e-9 of the largest channel (tests/far_field.rs).
 //!
 //! The fast model [`ChiangFarField`] is defined by its rule: evaluation, the pdf and sampling use
 //! the same nodes, so `value / pdf` is exactly 1 without absorption and the sampler's density is
@@ -420,9 +423,12 @@ pub struct FarFieldReference {
 }
 
 impl ChiangHair<f64> {
-    /// The offsets h in (-1, 1) where `phi = Phi(p, h)` (mod 2 pi) for p = 0, 1, 2: the peaks of
-    /// the far-field integrand, found by scanning gamma = asin h on 512 intervals and bisecting
-    /// sign changes of the wrapped difference (jumps of the wrap are excluded). Returned as gamma.
+    /// The offsets h in (-1, 1) where `phi - Phi(p, h)` is 0 or pi (mod 2 pi) for p = 0, 1, 2:
+    /// the peaks of the far-field integrand, and its kinks, where the trimmed logistic's
+    /// argument wraps from pi to -pi (its slope changes sign there: with a wide lobe, beta_n
+    /// near 1, an adaptive rule that straddles a kink can settle on a wrong value with a small
+    /// error estimate). Found by scanning gamma = asin h on 512 intervals and bisecting the sign
+    /// changes of the wrapped difference, which change sign at both. Returned as gamma.
     fn peak_offsets(&self, sin_o: f64, cos_o: f64, phi: f64) -> Vec<f64> {
         let eta = self.eta();
         let half_pi = core::f64::consts::FRAC_PI_2;
@@ -439,7 +445,7 @@ impl ChiangHair<f64> {
                 let mut lo = -half_pi + k as f64 * step;
                 let mut hi = lo + step;
                 let (flo, fhi) = (residual(p, lo), residual(p, hi));
-                if flo * fhi > 0.0 || (flo - fhi).abs() > 1.0 {
+                if flo * fhi > 0.0 {
                     continue;
                 }
                 for _ in 0..60 {
