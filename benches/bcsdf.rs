@@ -7,7 +7,9 @@
 //! eumelanin 1.3 (the Mitsuba 3 peer, `/work/shared/peers/mitsuba_hair_bench.py`, uses the same
 //! roughness, tilt and index).
 //!
-//! Run: `cargo bench --bench bcsdf` (or `-- batch` for the batched functions only).
+//! Run: `cargo bench --bench bcsdf` (or `-- batch` for the batched functions only;
+//! `-- parallel_batch` for the parallel batch on one and two threads against the sequential
+//! one, over 2^16 samples).
 //!
 //! **Benchmark of record.** The Mitsuba 3 peer JIT-compiles its vectorised LLVM backend for the
 //! host CPU (AVX-512 where available, 16 lanes), so the fair comparison builds this crate for
@@ -20,7 +22,8 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use hairmath::bcsdf::{
-    eval_batch, pdf_batch, BatchLanes, Bcsdf, ChiangHair, Model, Query, RandomNumbers, SampledBcsdf,
+    eval_batch, par_eval_batch, pdf_batch, BatchLanes, BatchReal, Bcsdf, ChiangHair, Model, Query,
+    RandomNumbers, SampledBcsdf,
 };
 use hairmath::geometry::V3;
 use hairmath::params::HairParams;
@@ -229,7 +232,53 @@ fn bench_pdf(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_eval, bench_sample, bench_pdf);
+/// Samples of the parallel batch's benchmark.
+const PARALLEL_N: usize = 1 << 16;
+
+/// The parallel batch ([`par_eval_batch`], lanes of [`BatchReal`]) on `PARALLEL_N` samples in
+/// pools of one and two threads, against the sequential [`eval_batch`] on the same samples:
+/// the ratios of one run are the scaling.
+fn bench_parallel(c: &mut Criterion) {
+    let p = params();
+    let mut rng = Pcg64Mcg::seed_from_u64(7);
+    let unit = |rng: &mut Pcg64Mcg| {
+        let z: f32 = rng.random_range(-1.0..=1.0);
+        let phi: f32 = rng.random_range(0.0..core::f32::consts::TAU);
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        [r * phi.cos(), r * phi.sin(), z]
+    };
+    let wi: Vec<[f32; 3]> = (0..PARALLEL_N).map(|_| unit(&mut rng)).collect();
+    let wo: Vec<[f32; 3]> = (0..PARALLEL_N).map(|_| unit(&mut rng)).collect();
+    let h: Vec<f32> = (0..PARALLEL_N)
+        .map(|_| rng.random_range(-1.0..=1.0))
+        .collect();
+    let mut out = vec![[0.0_f32; 3]; PARALLEL_N];
+    let hair = ChiangHair::<f64>::new(&p).instantiate::<BatchReal>();
+    let mut g = c.benchmark_group("parallel_batch");
+    g.throughput(Throughput::Elements(PARALLEL_N as u64));
+    g.bench_function("sequential", |b| {
+        b.iter(|| {
+            eval_batch(black_box(&hair), &wi, &wo, &h, &mut out).expect("equal lengths");
+            black_box(&mut out);
+        })
+    });
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a thread pool");
+        g.bench_function(BenchmarkId::new("threads", threads), |b| {
+            b.iter(|| {
+                pool.install(|| par_eval_batch(black_box(&hair), &wi, &wo, &h, &mut out))
+                    .expect("equal lengths");
+                black_box(&mut out);
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench_eval, bench_sample, bench_pdf, bench_parallel);
 
 /// The Mitsuba peer's method (`/tmp/mi/run_peer.sh N 1`): `n` random samples evaluated in one
 /// call, one warm-up pass, then the best of five timed passes, printed as ns per evaluation.

@@ -315,6 +315,73 @@ pub fn pdf_batch<L: BatchLanes, M: SampledBcsdf<L>>(
     Ok(())
 }
 
+/// Samples per task of the parallel batch, a multiple of every lane count: tens of
+/// microseconds of work per task for the models here, against rayon's per-task overhead of
+/// about a microsecond, and still enough tasks to balance the threads on a few thousand
+/// samples (`benches/bcsdf.rs`, group `parallel_batch`, measures the scaling).
+#[cfg(feature = "parallel")]
+pub const PARALLEL_CHUNK: usize = 1024;
+
+/// [`eval_batch`] on every thread of rayon's current pool: the samples split into chunks of
+/// [`PARALLEL_CHUNK`], each evaluated by [`eval_batch`]. The results are those of
+/// [`eval_batch`], bit for bit, whatever the thread count (the chunks start at multiples of
+/// the lane count, so every sample is in the same lane of the same vector). Run it inside
+/// `rayon::ThreadPool::install` to choose the threads.
+///
+/// # Errors
+/// As [`eval_batch`], checked before any work; `out` is then untouched.
+#[cfg(feature = "parallel")]
+pub fn par_eval_batch<L: BatchLanes, M: Bcsdf<L> + Sync>(
+    model: &M,
+    wi: &[[f32; 3]],
+    wo: &[[f32; 3]],
+    h: &[f32],
+    out: &mut [[f32; 3]],
+) -> Result<(), BatchError> {
+    check(wi.len(), wo.len(), h.len(), out.len())?;
+    check_samples(wi, wo, h)?;
+    for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
+        eval_batch(model, wi, wo, h, out)
+    })
+}
+
+/// [`pdf_batch`] on every thread of rayon's current pool, as [`par_eval_batch`] is
+/// [`eval_batch`]'s: the same values, bit for bit.
+///
+/// # Errors
+/// As [`pdf_batch`], checked before any work; `out` is then untouched.
+#[cfg(feature = "parallel")]
+pub fn par_pdf_batch<L: BatchLanes, M: SampledBcsdf<L> + Sync>(
+    model: &M,
+    wi: &[[f32; 3]],
+    wo: &[[f32; 3]],
+    h: &[f32],
+    out: &mut [f32],
+) -> Result<(), BatchError> {
+    check(wi.len(), wo.len(), h.len(), out.len())?;
+    check_samples(wi, wo, h)?;
+    for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
+        pdf_batch(model, wi, wo, h, out)
+    })
+}
+
+/// Runs `f` on chunks of [`PARALLEL_CHUNK`] samples in parallel (lengths already checked).
+#[cfg(feature = "parallel")]
+fn for_each_parallel_chunk<T: Send>(
+    wi: &[[f32; 3]],
+    wo: &[[f32; 3]],
+    h: &[f32],
+    out: &mut [T],
+    f: impl Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [T]) -> Result<(), BatchError> + Sync,
+) -> Result<(), BatchError> {
+    use rayon::prelude::*;
+    wi.par_chunks(PARALLEL_CHUNK)
+        .zip(wo.par_chunks(PARALLEL_CHUNK))
+        .zip(h.par_chunks(PARALLEL_CHUNK))
+        .zip(out.par_chunks_mut(PARALLEL_CHUNK))
+        .try_for_each(|(((wi, wo), h), out)| f(wi, wo, h, out))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -560,5 +627,51 @@ mod tests {
             eval_batch(&hair, &wi[..len], &wo[..len], &h[..len], &mut part).unwrap();
             assert_eq!(part[..], full[..len], "length {len}");
         }
+    }
+
+    /// The parallel batch is the sequential one bit for bit, in pools of one to three threads,
+    /// on a length that is no multiple of the chunk or the lanes; a bad sample anywhere is the
+    /// sequential batch's error, with `out` untouched.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn the_parallel_batch_is_the_sequential_one() {
+        let (wi, wo, h) = inputs(3 * PARALLEL_CHUNK + 5);
+        let n = wi.len();
+        let hair = model().instantiate::<BatchReal>();
+        let mut expected = vec![[0.0_f32; 3]; n];
+        eval_batch(&hair, &wi, &wo, &h, &mut expected).unwrap();
+        let mut expected_pdf = vec![0.0_f32; n];
+        pdf_batch(&hair, &wi, &wo, &h, &mut expected_pdf).unwrap();
+        for threads in 1..=3 {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut out = vec![[0.0_f32; 3]; n];
+            pool.install(|| par_eval_batch(&hair, &wi, &wo, &h, &mut out))
+                .unwrap();
+            let bits =
+                |v: &[[f32; 3]]| -> Vec<u32> { v.iter().flatten().map(|x| x.to_bits()).collect() };
+            assert_eq!(bits(&out), bits(&expected), "{threads} threads");
+            let mut pdf = vec![0.0_f32; n];
+            pool.install(|| par_pdf_batch(&hair, &wi, &wo, &h, &mut pdf))
+                .unwrap();
+            let pdf_bits: Vec<u32> = pdf.iter().map(|x| x.to_bits()).collect();
+            let expected_bits: Vec<u32> = expected_pdf.iter().map(|x| x.to_bits()).collect();
+            assert_eq!(pdf_bits, expected_bits, "{threads} threads");
+        }
+        let mut bad = wi.clone();
+        bad[2 * PARALLEL_CHUNK + 1] = [f32::NAN, 0.0, 1.0];
+        let mut out = vec![[7.0_f32; 3]; n];
+        let parallel = par_eval_batch(&hair, &bad, &wo, &h, &mut out).unwrap_err();
+        let sequential = eval_batch(&hair, &bad, &wo, &h, &mut expected).unwrap_err();
+        // Debug output, not PartialEq: the error holds the NaN.
+        assert_eq!(format!("{parallel:?}"), format!("{sequential:?}"));
+        assert!(out.iter().flatten().all(|&x| x == 7.0));
+        let short = par_eval_batch(&hair, &wi[1..], &wo, &h, &mut out).unwrap_err();
+        assert_eq!(
+            short,
+            eval_batch(&hair, &wi[1..], &wo, &h, &mut expected).unwrap_err()
+        );
     }
 }

@@ -25,6 +25,8 @@ mod varying;
 pub use batch::{
     eval_batch, pdf_batch, BatchError, BatchEval, BatchLanes, BatchLengthError, BatchReal, LANES,
 };
+#[cfg(feature = "parallel")]
+pub use batch::{par_eval_batch, par_pdf_batch, PARALLEL_CHUNK};
 pub use chiang::{
     logistic_scale, longitudinal_variance, AtOffset, AzimuthalFactors, ChiangHair, ChiangUniforms,
     Offsets, OffsetsIn, Outgoing, CHIANG_LOBES,
