@@ -232,6 +232,23 @@ fn bench_pdf(c: &mut Criterion) {
     g.finish();
 }
 
+/// `n` samples from the seed `seed`: directions uniform on the sphere (`wi`, then `wo`) and h
+/// uniform in [-1, 1].
+#[allow(clippy::type_complexity)]
+fn random_samples(n: usize, seed: u64) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<f32>) {
+    let mut rng = Pcg64Mcg::seed_from_u64(seed);
+    let unit = |rng: &mut Pcg64Mcg| {
+        let z: f32 = rng.random_range(-1.0..=1.0);
+        let phi: f32 = rng.random_range(0.0..core::f32::consts::TAU);
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        [r * phi.cos(), r * phi.sin(), z]
+    };
+    let wi: Vec<[f32; 3]> = (0..n).map(|_| unit(&mut rng)).collect();
+    let wo: Vec<[f32; 3]> = (0..n).map(|_| unit(&mut rng)).collect();
+    let h: Vec<f32> = (0..n).map(|_| rng.random_range(-1.0..=1.0)).collect();
+    (wi, wo, h)
+}
+
 /// Samples of the parallel batch's benchmark.
 const PARALLEL_N: usize = 1 << 16;
 
@@ -240,18 +257,7 @@ const PARALLEL_N: usize = 1 << 16;
 /// the ratios of one run are the scaling.
 fn bench_parallel(c: &mut Criterion) {
     let p = params();
-    let mut rng = Pcg64Mcg::seed_from_u64(7);
-    let unit = |rng: &mut Pcg64Mcg| {
-        let z: f32 = rng.random_range(-1.0..=1.0);
-        let phi: f32 = rng.random_range(0.0..core::f32::consts::TAU);
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        [r * phi.cos(), r * phi.sin(), z]
-    };
-    let wi: Vec<[f32; 3]> = (0..PARALLEL_N).map(|_| unit(&mut rng)).collect();
-    let wo: Vec<[f32; 3]> = (0..PARALLEL_N).map(|_| unit(&mut rng)).collect();
-    let h: Vec<f32> = (0..PARALLEL_N)
-        .map(|_| rng.random_range(-1.0..=1.0))
-        .collect();
+    let (wi, wo, h) = random_samples(PARALLEL_N, 7);
     let mut out = vec![[0.0_f32; 3]; PARALLEL_N];
     let hair = ChiangHair::<f64>::new(&p).instantiate::<BatchReal>();
     let mut g = c.benchmark_group("parallel_batch");
@@ -285,16 +291,7 @@ criterion_group!(benches, bench_eval, bench_sample, bench_pdf, bench_parallel);
 /// Best-of-five filters the noise of a shared machine the same way for both sides.
 fn peer_style(n: usize) {
     let p = params();
-    let mut rng = Pcg64Mcg::seed_from_u64(3);
-    let unit = |rng: &mut Pcg64Mcg| {
-        let z: f32 = rng.random_range(-1.0..=1.0);
-        let phi: f32 = rng.random_range(0.0..core::f32::consts::TAU);
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        [r * phi.cos(), r * phi.sin(), z]
-    };
-    let wi: Vec<[f32; 3]> = (0..n).map(|_| unit(&mut rng)).collect();
-    let wo: Vec<[f32; 3]> = (0..n).map(|_| unit(&mut rng)).collect();
-    let h: Vec<f32> = (0..n).map(|_| rng.random_range(-1.0..=1.0)).collect();
+    let (wi, wo, h) = random_samples(n, 3);
     let mut out = vec![[0.0_f32; 3]; n];
     fn best<L: BatchLanes>(
         p: &HairParams,
