@@ -10,7 +10,9 @@
 use crate::error::ParamError;
 use crate::real::{Real, ShaderFunction, TINY};
 
-/// A 3-vector of any [`Real`] (glam is used at the API boundary; generic code needs its own).
+/// A 3-vector of any [`Real`] (glam is used at the API boundary, re-exported as
+/// [`crate::glam`]; generic code needs its own): `From` converts to and from [`glam::Vec3`]
+/// (`f32`) and [`glam::DVec3`] (`f64`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct V3<R> {
     /// First component (the fibre tangent in the local frame).
@@ -65,6 +67,42 @@ impl<R: Real> core::ops::Sub for V3<R> {
             y: self.y - o.y,
             z: self.z - o.z,
         }
+    }
+}
+
+impl<R: Real> core::ops::Add for V3<R> {
+    type Output = V3<R>;
+    /// Component-wise sum.
+    fn add(self, o: Self) -> Self {
+        V3 {
+            x: self.x + o.x,
+            y: self.y + o.y,
+            z: self.z + o.z,
+        }
+    }
+}
+
+impl From<glam::Vec3> for V3<f32> {
+    fn from(v: glam::Vec3) -> Self {
+        V3::new(v.x, v.y, v.z)
+    }
+}
+
+impl From<V3<f32>> for glam::Vec3 {
+    fn from(v: V3<f32>) -> Self {
+        glam::Vec3::new(v.x, v.y, v.z)
+    }
+}
+
+impl From<glam::DVec3> for V3<f64> {
+    fn from(v: glam::DVec3) -> Self {
+        V3::new(v.x, v.y, v.z)
+    }
+}
+
+impl From<V3<f64>> for glam::DVec3 {
+    fn from(v: V3<f64>) -> Self {
+        glam::DVec3::new(v.x, v.y, v.z)
     }
 }
 

@@ -26,5 +26,10 @@ pub mod sh;
 pub mod shader;
 #[cfg(feature = "strands")]
 pub mod strands;
+pub mod world;
+
+/// The vector types of the API ([`glam::Vec3`], [`glam::DVec3`]), re-exported so a renderer
+/// uses the version hairmath is built with.
+pub use glam;
 
 pub use error::ParamError;

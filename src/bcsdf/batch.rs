@@ -120,6 +120,27 @@ pub enum BatchError {
         /// [`super::UNIT_TOLERANCE`].
         tolerance: f64,
     },
+    /// The tangents of a world-space batch ([`crate::world::eval_batch_world`]) are not one per
+    /// sample.
+    #[error("batch slices must have equal lengths: tangent {tangent}, samples {samples}")]
+    TangentLength {
+        /// Length of `tangent`.
+        tangent: usize,
+        /// Length of `wi`.
+        samples: usize,
+    },
+    /// A tangent of a world-space batch that is zero or has a non-finite component.
+    #[error("sample {index}: tangent = ({x}, {y}, {z}) must be non-zero with finite components")]
+    Tangent {
+        /// The sample's index.
+        index: usize,
+        /// Components as given.
+        x: f32,
+        /// Components as given.
+        y: f32,
+        /// Components as given.
+        z: f32,
+    },
     /// An offset that is NaN (finite or infinite ones are clamped to [-1, 1]).
     #[error("sample {index}: h = {h} must be a number (offsets outside [-1, 1] are clamped)")]
     Offset {
@@ -141,7 +162,7 @@ fn is_unit(w: &[f32; 3]) -> bool {
 /// [`BatchError`] for the first sample with a direction that is not unit or a NaN offset. A
 /// branch-free pass over every sample first (it vectorises: a few percent of an evaluation),
 /// then, only if one is bad, a search for it.
-fn check_samples(wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]) -> Result<(), BatchError> {
+pub(crate) fn check_samples(wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]) -> Result<(), BatchError> {
     let sample_ok =
         |((a, b), h): ((&[f32; 3], &[f32; 3]), &f32)| is_unit(a) & is_unit(b) & !h.is_nan();
     let all_ok = wi
@@ -179,7 +200,7 @@ fn check_samples(wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]) -> Result<(), Batc
 const PAD_DIR: [f32; 3] = [0.0, 1.0, 0.0];
 const PAD_H: f32 = 0.0;
 
-fn check(wi: usize, wo: usize, h: usize, out: usize) -> Result<(), BatchLengthError> {
+pub(crate) fn check(wi: usize, wo: usize, h: usize, out: usize) -> Result<(), BatchLengthError> {
     if wi == wo && wo == h && h == out {
         Ok(())
     } else {
@@ -252,6 +273,18 @@ pub fn eval_batch<L: BatchLanes, M: Bcsdf<L>>(
 ) -> Result<(), BatchError> {
     check(wi.len(), wo.len(), h.len(), out.len())?;
     check_samples(wi, wo, h)?;
+    eval_checked(model, wi, wo, h, out);
+    Ok(())
+}
+
+/// [`eval_batch`] of samples already checked (equal lengths, unit directions, no NaN offset).
+pub(crate) fn eval_checked<L: BatchLanes, M: Bcsdf<L>>(
+    model: &M,
+    wi: &[[f32; 3]],
+    wo: &[[f32; 3]],
+    h: &[f32],
+    out: &mut [[f32; 3]],
+) {
     for_each_chunk(wi, wo, h, out, |wi, wo, h, out| {
         let mut rgb = [[0.0_f32; MAX_LANES]; 3];
         for (lanes, value) in rgb.iter_mut().zip(model.eval(&Query::new(wi, wo, h))) {
@@ -261,7 +294,6 @@ pub fn eval_batch<L: BatchLanes, M: Bcsdf<L>>(
             *slot = [rgb[0][k], rgb[1][k], rgb[2][k]];
         }
     });
-    Ok(())
 }
 
 /// A model instantiated on the lanes of [`BatchReal`], behind a trait object: what a caller

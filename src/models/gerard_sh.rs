@@ -571,6 +571,24 @@ pub struct Lighting<'a, R> {
     pub light_radiance: [R; 3],
 }
 
+/// The model the phase tables of eq. 14 hold: Gerard's model of `source` with its absorption
+/// removed, since eq. 14 applies absorption at shading time as `A^k` with the exponents
+/// `k_tt`, `k_trt` (which the model keeps for that step).
+///
+/// # Errors
+/// As [`Gerard::new`].
+pub fn clear_phase_model(
+    source: &Marschner2003,
+    lobe: GerardLobe,
+    [k_tt, k_trt]: [f64; 2],
+) -> Result<Gerard<f64>, ParamError> {
+    let clear = Marschner2003 {
+        sigma_a: Absorption::new([0.0; 3])?,
+        ..*source
+    };
+    Gerard::new(&clear, lobe, k_tt, k_trt)
+}
+
 impl<const C: usize> GerardSh<f64, C> {
     /// The shading of Gerard's model `model` (built from `source` with `lobe` and the
     /// exponents `k_tt`, `k_trt`; [`Gerard::new`]), its phase tables baked at `samples` values
@@ -591,12 +609,8 @@ impl<const C: usize> GerardSh<f64, C> {
             (0.0..1.0).contains(&b)
         })?;
         let model = Gerard::new(source, lobe, k_tt, k_trt)?;
-        let clear = Marschner2003 {
-            sigma_a: Absorption::new([0.0; 3])?,
-            ..*source
-        };
         let phase = PhaseTable::bake(
-            &Gerard::new(&clear, lobe, k_tt, k_trt)?,
+            &clear_phase_model(source, lobe, [k_tt, k_trt])?,
             samples,
             quadrature,
         )?;

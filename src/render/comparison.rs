@@ -12,8 +12,8 @@ use crate::bcsdf::{Bcsdf, ChiangFarField, FarFieldRule, FromInputs, Marschner200
 use crate::diagnostics::OpCounts;
 use crate::error::ParamError;
 use crate::models::gerard_sh::{
-    projection_error, trace_shade, AbsorbingPhaseTable, GerardSh, PhaseQuadrature, PhaseTable,
-    PhaseTables,
+    clear_phase_model, projection_error, trace_shade, AbsorbingPhaseTable, GerardSh,
+    PhaseQuadrature, PhaseTable, PhaseTables,
 };
 #[cfg(feature = "fit")]
 use crate::models::marschner_inputs_of;
@@ -79,49 +79,66 @@ impl GerardSources {
         }
     }
 
+    /// `source` for every variant.
+    pub fn all(source: Marschner2003) -> Self {
+        Self {
+            published: source,
+            refit: source,
+            tabulated: source,
+        }
+    }
+
     /// Every variant at Gerard's mapping of `hair` ([`Approximation::mapped_inputs`]).
     ///
     /// # Errors
     /// As [`Marschner2003::from_inputs`].
     pub fn mapped(hair: &HairParams) -> Result<Self, ParamError> {
-        let mapped = Marschner2003::from_inputs(&Gerard::mapped_inputs(hair))?;
-        Ok(Self {
-            published: mapped,
-            refit: mapped,
-            tabulated: mapped,
-        })
+        Ok(Self::all(Marschner2003::from_inputs(
+            &Gerard::mapped_inputs(hair),
+        )?))
     }
 
-    /// Each variant at its best-fit inputs for `hair` (`alpha_r`, `beta_r` and `sigma_a`
-    /// fitted by E against the Chiang far field on `pairs` direction pairs): Gerard's direct
-    /// model with the published exponents, with the refit ones (its switch
-    /// `refit_absorption`), and Marschner et al. 2003 itself for the tabulated variant (its
-    /// Gaussian lobes and exact attenuation are what the table holds). Gerard's shading at its
-    /// most accurate, as Kajiya-Kay is compared at its own.
+    /// Each variant at its best-fit inputs for `hair` ([`Self::best_fit_of`]). Gerard's
+    /// shading at its most accurate, as Kajiya-Kay is compared at its own.
     ///
     /// # Errors
     /// As the fits.
     #[cfg(feature = "fit")]
     pub fn best_fit(hair: &HairParams, pairs: usize) -> Result<Self, crate::fit::FitError> {
-        use crate::bcsdf::InputValue;
-        let gerard = Gerard::<f64>::mapped_inputs(hair);
-        let mut refit = gerard.clone();
-        refit.set("refit_absorption", InputValue::Switch(true));
-        let fitted = |name: &str, start| {
-            Marschner2003::from_inputs(&best_fit_inputs(
-                name,
-                Gerard::FITTED_INPUTS,
-                start,
-                hair,
-                pairs,
-            )?)
-            .map_err(crate::fit::FitError::from)
-        };
         Ok(Self {
-            published: fitted(Gerard::NAME, &gerard)?,
-            refit: fitted(Gerard::NAME, &refit)?,
-            tabulated: fitted(Marschner2003::NAME, &marschner_inputs_of(hair))?,
+            published: Self::best_fit_of(PhaseAbsorption::Published, hair, pairs)?,
+            refit: Self::best_fit_of(PhaseAbsorption::Refit, hair, pairs)?,
+            tabulated: Self::best_fit_of(PhaseAbsorption::Tabulated, hair, pairs)?,
         })
+    }
+
+    /// The source of the variant `absorption` at its best-fit inputs for `hair` (`alpha_r`,
+    /// `beta_r` and `sigma_a` fitted by E against the Chiang far field on `pairs` direction
+    /// pairs): Gerard's direct model with the published exponents, or with the refit ones (its
+    /// switch `refit_absorption`), and Marschner et al. 2003 itself for the tabulated variant
+    /// (its Gaussian lobes and exact attenuation are what the table holds). One fit, for a
+    /// caller that shades with one variant.
+    ///
+    /// # Errors
+    /// As the fit.
+    #[cfg(feature = "fit")]
+    pub fn best_fit_of(
+        absorption: PhaseAbsorption,
+        hair: &HairParams,
+        pairs: usize,
+    ) -> Result<Marschner2003, crate::fit::FitError> {
+        use crate::bcsdf::InputValue;
+        let (name, start) = match absorption {
+            PhaseAbsorption::Published => (Gerard::NAME, Gerard::<f64>::mapped_inputs(hair)),
+            PhaseAbsorption::Refit => {
+                let mut refit = Gerard::<f64>::mapped_inputs(hair);
+                refit.set("refit_absorption", InputValue::Switch(true));
+                (Gerard::NAME, refit)
+            }
+            PhaseAbsorption::Tabulated => (Marschner2003::NAME, marschner_inputs_of(hair)),
+        };
+        let fitted = best_fit_inputs(name, Gerard::FITTED_INPUTS, &start, hair, pairs)?;
+        Ok(Marschner2003::from_inputs(&fitted)?)
     }
 }
 
@@ -555,12 +572,7 @@ pub fn phase_projection_error(
     if absorption == PhaseAbsorption::Tabulated {
         return projection_error(source, s, lmax, quadrature);
     }
-    let clear = Marschner2003 {
-        sigma_a: Absorption::new([0.0; 3])?,
-        ..*source
-    };
-    let [k_tt, k_trt] = absorption.exponents();
-    let model = Gerard::new(&clear, GerardLobe::Printed, k_tt, k_trt)?;
+    let model = clear_phase_model(source, GerardLobe::Printed, absorption.exponents())?;
     projection_error(&model, s, lmax, quadrature)
 }
 

@@ -665,12 +665,17 @@ traced_tests! {
         }
     }
 
-    geometry_v3 ["V3::new", "V3::c", "V3::dot", "V3::cross", "V3::scale", "V3::sub"] {
+    geometry_v3 [
+        "V3::new", "V3::c", "V3::dot", "V3::cross", "V3::scale", "V3::sub", "V3::add",
+        "V3::to_v3", "V3::from_v3"
+    ] {
+        use hairmath::world::WorldVector;
         let inputs = rows(|g| [g.pair(), vec![g.pick(&WRAP_X)]].concat());
         case!("V3", inputs, |x| {
             let (a, b) = (V3::new(x[0], x[1], x[2]), v3(&x[3..6]));
             let (cross, scale_sub) = (of_v3(a.cross(b)), of_v3(a.scale(x[6]) - b));
-            [cross, scale_sub, vec![a.dot(b)], of_v3(V3::c(0.1, -2.0, 1e-30))].concat()
+            let add = of_v3(a + WorldVector::from_v3(b.to_v3()));
+            [cross, scale_sub, add, vec![a.dot(b)], of_v3(V3::c(0.1, -2.0, 1e-30))].concat()
         });
     }
     geometry_fibre_angles_methods [

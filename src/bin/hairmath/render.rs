@@ -118,7 +118,12 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     config.check()?;
     let start = Instant::now();
     let kajiya_kay = kajiya_kay_best_fit(&hair, FIT_PAIRS)?;
-    let gerard_sources = GerardSources::best_fit(&hair, FIT_PAIRS)?;
+    // Only the variant this render shades with is fitted (the others are never read).
+    let gerard_sources = GerardSources::all(GerardSources::best_fit_of(
+        config.absorption,
+        &hair,
+        FIT_PAIRS,
+    )?);
     let models = Approximations {
         gerard_sources: &gerard_sources,
         kajiya_kay: &kajiya_kay,
