@@ -374,6 +374,21 @@ impl ModelEntry {
 }
 
 /// The registered model called `name`.
+///
+/// # Examples
+///
+/// ```
+/// use hairmath::bcsdf::{InputValue, Query};
+/// use hairmath::geometry::V3;
+///
+/// let karis = hairmath::registry::find_model("karis").expect("registered");
+/// let mut values = karis.example_values(); // the default hair through Karis' mapping
+/// values.set("roughness", InputValue::Number(0.4));
+/// let model = (karis.build)(&values)?;
+/// let s = model.eval(&Query::far(V3::new(-0.3, 0.2, 0.93), V3::new(0.3, 0.1, 0.95)));
+/// assert!(s.iter().all(|v| v.is_finite()));
+/// # Ok::<(), hairmath::ParamError>(())
+/// ```
 pub fn find_model(name: &str) -> Option<&'static ModelEntry> {
     MODELS.iter().find(|m| m.name == name)
 }

@@ -264,6 +264,23 @@ fn for_each_chunk<L: BatchLanes, T: Copy>(
 /// [`BatchError::Length`] if `wi`, `wo`, `h` and `out` differ in length,
 /// [`BatchError::Direction`] or [`BatchError::Offset`] naming the first bad sample; `out` is
 /// then untouched.
+///
+/// # Examples
+///
+/// ```
+/// use hairmath::bcsdf::{eval_batch, BatchError, BatchReal, ChiangHair, Model};
+/// use hairmath::params::HairParams;
+///
+/// let lanes = ChiangHair::new(&HairParams::default()).instantiate::<BatchReal>();
+/// let (wi, wo) = ([[-0.6, 0.8, 0.0]; 20], [[0.6, 0.0, 0.8]; 20]);
+/// let mut out = [[0.0_f32; 3]; 20];
+/// eval_batch(&lanes, &wi, &wo, &[0.1; 20], &mut out)?;
+/// assert!(out.iter().all(|s| s == &out[0] && s[0] > 0.0));
+/// // A direction that is not unit is refused, naming the sample.
+/// let bad = eval_batch(&lanes, &[[0.0; 3]], &wo[..1], &[0.0], &mut out[..1]);
+/// assert!(matches!(bad, Err(BatchError::Direction { index: 0, name: "wi", .. })));
+/// # Ok::<(), BatchError>(())
+/// ```
 pub fn eval_batch<L: BatchLanes, M: Bcsdf<L>>(
     model: &M,
     wi: &[[f32; 3]],

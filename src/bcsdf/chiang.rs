@@ -334,6 +334,22 @@ impl<R: Real> PairAngles<R> {
 impl<R: Real> ChiangHair<R> {
     /// The near-field model of `params`: the uniforms derived once in `f64`
     /// ([`ChiangUniforms::new`]) and rounded to `R`.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use hairmath::bcsdf::{Bcsdf, ChiangHair, Query, SampledBcsdf};
+    /// use hairmath::geometry::V3;
+    /// use hairmath::params::HairParams;
+    ///
+    /// let hair = ChiangHair::<f64>::new(&HairParams::default());
+    /// // Local frame, tangent +X: wi towards the light, wo towards the viewer, offset h.
+    /// let query = Query::checked(V3::new(-0.6, 0.0, 0.8), V3::new(0.6, 0.8, 0.0), 0.25)?;
+    /// let s = hair.eval(&query);
+    /// assert!(s.iter().all(|v| *v > 0.0));
+    /// assert!(hair.pdf(&query) > 0.0);
+    /// # Ok::<(), hairmath::ParamError>(())
+    /// ```
     pub fn new(params: &HairParams) -> Self {
         ChiangHair::<f64>::from_uniforms(ChiangUniforms::new(params)).instantiate()
     }

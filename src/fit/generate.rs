@@ -15,6 +15,20 @@ use super::{
 ///
 /// # Errors
 /// The first fit that fails.
+///
+/// # Examples
+///
+/// ```
+/// use hairmath::fit::{all_fits, constants_source, FitSettings};
+///
+/// let settings = FitSettings::new(1.6)?; // hair of refractive index 1.6
+/// let fits = all_fits(&settings)?;
+/// let karis = fits.records.iter().find(|r| r.key == "karis.eta_prime.a").expect("fitted");
+/// assert!(karis.refit_error <= karis.published_error.expect("printed by Karis"));
+/// let source = constants_source(&settings, &fits); // Rust source, as src/models/constants.rs
+/// assert!(source.contains("eta = 1.6"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn all_fits(settings: &FitSettings) -> Result<FitOutput, FitError> {
     let families = [
         hg::hg_fits()?,

@@ -40,6 +40,20 @@ pub const MAX_PROJECT_LMAX: usize = 106;
 ///
 /// # Errors
 /// [`ParamError::OutOfRange`] if `lmax > MAX_PROJECT_LMAX` (106).
+///
+/// # Examples
+///
+/// ```
+/// use hairmath::sh::{project, reconstruct};
+/// use hairmath::glam::DVec3;
+///
+/// // A band-limited function (degree 2 in the direction) is reproduced exactly at lmax = 2.
+/// let f = |d: DVec3| 1.0 + d.z + d.x * d.y;
+/// let coefficients = project(2, f)?;
+/// let d = DVec3::new(0.48, 0.6, 0.64);
+/// assert!((reconstruct(&coefficients, d)? - f(d)).abs() < 1e-12);
+/// # Ok::<(), hairmath::ParamError>(())
+/// ```
 pub fn project(lmax: usize, f: impl FnMut(DVec3) -> f64) -> Result<Vec<f64>, ParamError> {
     ParamError::check(
         "lmax",

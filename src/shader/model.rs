@@ -124,6 +124,19 @@ pub struct ModelShader {
 /// # Errors
 /// [`ModelShaderError::Input`] for a model with no shader form (saying why) and for values or
 /// varying names the model does not accept, [`ModelShaderError::Shader`] if the emitter fails.
+///
+/// # Examples
+///
+/// ```
+/// use hairmath::registry::find_model;
+/// use hairmath::shader::{model_shader, Language};
+///
+/// let entry = find_model("kajiya-kay").expect("registered");
+/// let shader = model_shader(entry, &entry.example_values(), &[])?;
+/// let wgsl = String::from_utf8(shader.write(Language::Wgsl)?).expect("text");
+/// assert!(wgsl.contains("fn hair_bcsdf_world("));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn model_shader(
     entry: &ModelEntry,
     values: &InputValues,
