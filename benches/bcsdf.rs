@@ -4,7 +4,7 @@
 //! Every benchmark processes the same 1024 deterministic samples per iteration and reports
 //! `Throughput::Elements(1024)`, so criterion's time divided by 1024 is the cost of one
 //! evaluation. Material: beta_m = beta_n = 0.3, alpha = 2 degrees, eta = 1.55, sigma_a from
-//! eumelanin 1.3 (the Mitsuba 3 peer, `/work/shared/peers/mitsuba_hair_bench.py`, uses the same
+//! eumelanin 1.3 (the Mitsuba 3 peer, `benches/peers/mitsuba_hair_bench.py`, uses the same
 //! roughness, tilt and index).
 //!
 //! Run: `cargo bench --bench bcsdf` (or `-- batch` for the batched functions only;

@@ -83,7 +83,7 @@ layout(std430, binding = 0) readonly buffer type_5_block_0Compute { float _group
 layout(std430, binding = 1) buffer type_5_block_1Compute { float _group_0_binding_1_cs[]; };
 
 
-// hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
+// hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
     float _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
     float _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));

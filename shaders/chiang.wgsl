@@ -80,7 +80,7 @@ const BESSEL_I0_NEAR: array<f32, 7> = array<f32, 7>(1f, 3.5156229f, 3.0899425f, 
 // Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
 const BESSEL_I0_FAR: array<f32, 9> = array<f32, 9>(0.3989423f, 0.01328592f, 0.00225319f, -0.00157565f, 0.00916281f, -0.02057706f, 0.02635537f, -0.01647633f, 0.00392377f);
 
-// hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
+// hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
     let _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
     let _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));

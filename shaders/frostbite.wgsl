@@ -91,7 +91,7 @@ fn lut0_frostbite_tt(theta_o: f32, beta_n: f32) -> vec4<f32> {
     return (((((_e16 * _e34) * _e42) + ((_e15 * _e34) * _e46)) + ((_e16 * _e33) * _e51)) + ((_e15 * _e33) * _e56));
 }
 
-// hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
+// hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
     let _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
     let _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));

@@ -77,7 +77,7 @@ vec4 lut0_gerard(float phi, float theta_d) {
     return (((((_e16 * _e35) * _e43) + ((_e15 * _e35) * _e47)) + ((_e16 * _e34) * _e52)) + ((_e15 * _e34) * _e57));
 }
 
-// hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
+// hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
     float _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
     float _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));

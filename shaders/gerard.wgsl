@@ -72,7 +72,7 @@ fn lut0_gerard(phi: f32, theta_d: f32) -> vec4<f32> {
     return (((((_e16 * _e35) * _e43) + ((_e15 * _e35) * _e47)) + ((_e16 * _e34) * _e52)) + ((_e15 * _e34) * _e57));
 }
 
-// hairmath::geometry::fibre_angles -- the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane
+// hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
     let _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
     let _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));

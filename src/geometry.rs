@@ -1,6 +1,6 @@
 //! Fibre geometry: the scattering angles of a pair of directions about a fibre.
 //!
-//! Conventions (DESIGN.md): the tangent `u` points from root to tip; `wi` (towards the light)
+//! Conventions (docs/ARCHITECTURE.md): the tangent `u` points from root to tip; `wi` (towards the light)
 //! and `wo` (towards the viewer) both point away from the fibre. In the local frame the tangent
 //! is +X (as in pbrt), so `sin(theta) = w.x` and the azimuth `phi = atan2(w.z, w.y)` is measured
 //! in the YZ normal plane. theta lies in [-pi/2, pi/2]; theta_h = (theta_i + theta_o) / 2,
@@ -203,7 +203,7 @@ pub fn fibre_angles<R: Real>(tangent: V3<R>, wi: V3<R>, wo: V3<R>) -> FibreAngle
 pub fn local_fibre_angles<R: Real>(wi: V3<R>, wo: V3<R>) -> FibreAngles<R> {
     const FUNCTION: ShaderFunction = crate::shader_function!(
         fibre_angles,
-        "the local frame of DESIGN.md: sin theta = w.x, phi in the YZ plane",
+        "the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane",
         [wi: vec3, wo: vec3] -> {sin_theta_i, cos_theta_i, sin_theta_o, cos_theta_o, phi}
     );
     let args = [wi.x, wi.y, wi.z, wo.x, wo.y, wo.z];

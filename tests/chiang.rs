@@ -381,7 +381,7 @@ fn invalid_parameters_are_typed_errors_that_say_what_is_allowed() {
     }
 }
 
-/// The hard cases of DESIGN.md, each evaluated, sampled and given a pdf in f64 and f32:
+/// The hard cases of docs/ARCHITECTURE.md, each evaluated, sampled and given a pdf in f64 and f32:
 /// grazing directions, wi = wo, wi = -wo, phi = 0 and +-pi, h = +-1, beta = 0.01 (variance
 /// 5.4e-5) and 1, sigma_a = 0 and 20, eta close to 1, tilt 0 and 60 degrees.
 #[test]

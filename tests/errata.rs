@@ -8,7 +8,7 @@ use std::f64::consts::FRAC_PI_2;
 /// The 10-term power series for I0 (sum_{k<10} (x/2)^(2k) / (k!)^2) that some renderers use
 /// in d'Eon's lobe truncates I0 at large arguments; at variance 0.08 the lobe then loses energy.
 /// Measured: the lobe at v = 0.08, theta_o = 0 integrates to 0.978 (2.2% lost) with the truncated
-/// series, and to 1 within 1e-15 with hairmath's log-space I0 (DESIGN.md said "about 1%").
+/// series, and to 1 within 1e-15 with hairmath's log-space I0 (the design notes said "about 1%").
 #[test]
 fn ten_term_bessel_series_loses_energy_near_v_0_08() {
     let v = 0.08;

@@ -1,5 +1,5 @@
 //! The public evaluators of the fits over their whole domains (proptest) and on the hard cases
-//! of DESIGN.md: grazing inclinations, h = +-1, sigma_a = 0 and very dark hair, eta close to 1,
+//! of docs/ARCHITECTURE.md: grazing inclinations, h = +-1, sigma_a = 0 and very dark hair, eta close to 1,
 //! very low azimuthal roughness. Each returns a finite value in its range, or a typed error
 //! outside its domain; none panics or returns NaN.
 

@@ -28,7 +28,7 @@ use hairmath::sh::{index_to_lm, project, sh_index, GauntTensor, MAX_PROJECT_LMAX
 use hairmath::ParamError;
 
 /// Unit directions spread over the sphere (a Fibonacci lattice) and the hard ones of
-/// DESIGN.md: along the tangent both ways, perpendicular, grazing.
+/// docs/ARCHITECTURE.md: along the tangent both ways, perpendicular, grazing.
 fn directions() -> Vec<V3<f64>> {
     let n = 48;
     let mut v: Vec<V3<f64>> = (0..n)

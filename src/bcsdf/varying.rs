@@ -54,7 +54,7 @@ use crate::real::{
 };
 
 /// The value a roughness in [1e-16, 1] (beta_m, beta_n; [`crate::params::MIN_BETA`]) takes in
-/// shader code where it is below 1e-16 (or NaN): the lowest roughness the crate tests its models at (DESIGN.md, "very low
+/// shader code where it is below 1e-16 (or NaN): the lowest roughness the crate tests its models at (docs/ARCHITECTURE.md, "very low
 /// roughness"), where every model stays finite in `f32`.
 pub const MIN_ROUGHNESS: f64 = 0.01;
 

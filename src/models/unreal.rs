@@ -4,8 +4,9 @@
 //!
 //! # Source
 //!
-//! The listing "UE4.27 源码 / 核心代码" of the survey seed
-//! (`shared/seeds/hair-models-survey-kajiya-marschner-weta-ue4.txt`), with the configuration UE's
+//! The listing of Unreal Engine 4.27's `HairBsdf.ush` ("UE4.27 源码 / 核心代码") quoted by the
+//! survey of hair models from Kajiya-Kay and Marschner to Weta and UE4 that the project started
+//! from, with the configuration UE's
 //! deferred `HairBxDF` uses for direct lighting: `Specular` = 0.5 (so the R factor
 //! `Specular * 2` is 1), `Backlit` = 1 (so `lerp(1, Backlit, saturate(-VoL))` is 1), `Area` = 0,
 //! separable R on (`BScale = sqrt(2) CosHalfPhi`), the non-legacy absorption, no multiple

@@ -294,7 +294,7 @@ pub fn safe_sqrt<R: Real>(x: R) -> R {
 }
 
 /// `asin(x)` for `x` clamped to [-1, 1], written as `atan2(x, sqrt(1 - x^2))`, which GPUs
-/// evaluate more accurately than `asin` (see DESIGN.md). Exact 0 at x = 0, +-pi/2 at +-1.
+/// evaluate more accurately than `asin` (see docs/ARCHITECTURE.md). Exact 0 at x = 0, +-pi/2 at +-1.
 #[inline(always)]
 pub fn safe_asin<R: Real>(x: R) -> R {
     let x = x.clamp(R::c(-1.0), R::c(1.0));

@@ -582,7 +582,7 @@ pub fn ulps_off(gpu: f32, exact: f64) -> f64 {
 /// `log`/`log2` 2.4 ulp (1.5e-7 absolute on [0.5, 2]), `inverseSqrt` 1.47 ulp, `sqrt`, `/` and
 /// `*` correctly rounded (0.5 ulp), `sin`/`cos` 7.5e-8 absolute on [-pi, pi], `asin` 3.9e-4
 /// absolute and `acos` 1.6e-4 (beyond the spec: [`Tolerance::ASIN_ACOS_LLVMPIPE`]), `atan2` 347
-/// ulp, `pow` 3.4 ulp; shared/DESIGN.md adds `fma` not fused, `pow(0, 0)` = 0 and
+/// ulp, `pow` 3.4 ulp; docs/ARCHITECTURE.md adds `fma` not fused, `pow(0, 0)` = 0 and
 /// `atan2(0, 0)` = 2.356. Comparisons of whole models combine these per operation; never
 /// compare GPU and CPU bit for bit.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,5 +1,5 @@
 //! Every model's emitted shader runs on a WebGPU device (llvmpipe in CI) and gives what the
-//! CPU gives: a few thousand (wi, wo[, h]) rows, the hard cases of DESIGN.md among them,
+//! CPU gives: a few thousand (wi, wo[, h]) rows, the hard cases of docs/ARCHITECTURE.md among them,
 //! evaluated by the compute entry point and compared with the `f32` evaluation row by row
 //! under a bound derived from the WGSL accuracy rules ([`crate::error_bound`]). The world-space
 //! companion is checked against the local function; SPIR-V passes `spirv-val`.
@@ -27,7 +27,7 @@ fn direction(theta: f64, phi: f64) -> [f32; 3] {
     ])
 }
 
-/// The hard pairs of DESIGN.md: along the tangent, grazing, wi = wo, wi = -wo, phi = 0 and
+/// The hard pairs of docs/ARCHITECTURE.md: along the tangent, grazing, wi = wo, wi = -wo, phi = 0 and
 /// phi = pi, theta_d near +-90 degrees.
 fn hard_pairs() -> Vec<([f32; 3], [f32; 3])> {
     let grazing = std::f64::consts::FRAC_PI_2 - 1e-4;
