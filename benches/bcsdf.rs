@@ -72,7 +72,7 @@ fn inputs() -> Inputs {
 
 fn v3<R: Real>(d: &[[f32; 3]]) -> Vec<V3<R>> {
     d.iter()
-        .map(|v| V3::c(v[0] as f64, v[1] as f64, v[2] as f64))
+        .map(|v| V3::from_f64(v[0] as f64, v[1] as f64, v[2] as f64))
         .collect()
 }
 

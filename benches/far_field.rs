@@ -122,7 +122,7 @@ fn bench_eval(c: &mut Criterion) {
     let far32 = ChiangFarField::<f32>::with_rule(&params(), &rule);
     let pairs32: Vec<(V3<f32>, V3<f32>)> = pairs
         .iter()
-        .map(|(a, b)| (V3::c(a.x, a.y, a.z), V3::c(b.x, b.y, b.z)))
+        .map(|(a, b)| (V3::from_f64(a.x, a.y, a.z), V3::from_f64(b.x, b.y, b.z)))
         .collect();
     g.bench_function(BenchmarkId::new("eval", "f32 32 nodes"), |b| {
         b.iter(|| {

@@ -28,8 +28,9 @@ impl<R: Real> V3<R> {
     pub fn new(x: R, y: R, z: R) -> Self {
         V3 { x, y, z }
     }
-    /// A vector from `f64` components rounded to the working precision.
-    pub fn c(x: f64, y: f64, z: f64) -> Self {
+    /// A vector from `f64` components rounded to the working precision (as [`Real::c`] rounds
+    /// a constant).
+    pub fn from_f64(x: f64, y: f64, z: f64) -> Self {
         V3 {
             x: R::c(x),
             y: R::c(y),
@@ -118,7 +119,9 @@ pub struct FibreAngles<R> {
     pub sin_theta_o: R,
     /// cos(theta_o) >= 0.
     pub cos_theta_o: R,
-    /// phi = phi_o - phi_i in [-pi, pi]; 0 when either direction is along the fibre.
+    /// phi = phi_o - phi_i in [-pi, pi]; 0 when either direction is along the fibre. (The
+    /// Chiang model's lobes are written in pbrt's phi_i - phi_o, its negative: the far field's
+    /// functions name that argument `phi_i_minus_o`.)
     pub phi: R,
 }
 
@@ -429,11 +432,12 @@ mod tests {
 
     #[test]
     fn grazing_and_degenerate_directions_are_finite() {
-        let along = V3::c(1.0, 0.0, 0.0);
+        let along = V3::from_f64(1.0, 0.0, 0.0);
         let a = local_fibre_angles(along, dir(0.2, 1.0));
         assert_eq!(a.phi, 0.0);
         assert_eq!(a.theta_i(), FRAC_PI_2);
-        let b = local_fibre_angles::<f32>(V3::c(0.0, 1.0, 0.0), V3::c(0.0, -1.0, 0.0));
+        let b =
+            local_fibre_angles::<f32>(V3::from_f64(0.0, 1.0, 0.0), V3::from_f64(0.0, -1.0, 0.0));
         assert!((b.phi.abs() - std::f32::consts::PI).abs() < 1e-6);
     }
 

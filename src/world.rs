@@ -142,13 +142,14 @@ pub struct WorldSample<V: WorldVector> {
 }
 
 impl<V: WorldVector> WorldSample<V> {
-    /// The estimator weight `value / pdf` per channel (the cosine factor of the rendering
-    /// equation is the caller's; 0 where the pdf is 0).
+    /// The estimator weight `value / pdf` per channel ([`HairSample::weight`]).
     pub fn weight(&self) -> [V::Real; 3] {
-        let zero = V::Real::c(0.0);
-        let positive = self.pdf.gt(zero);
-        let pdf = V::Real::select(positive, self.pdf, V::Real::c(1.0));
-        self.value.map(|v| V::Real::select(positive, v / pdf, zero))
+        HairSample {
+            wi: self.wi.to_v3(),
+            value: self.value,
+            pdf: self.pdf,
+        }
+        .weight()
     }
 }
 

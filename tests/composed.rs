@@ -225,7 +225,10 @@ fn every_option_is_finite_and_non_negative_on_the_hard_cases() {
             let single = model.instantiate::<f32>();
             for (wi, wo) in hard_pairs() {
                 let s = model.eval(&Query::far(wi, wo));
-                let q32 = Query::far(V3::c(wi.x, wi.y, wi.z), V3::c(wo.x, wo.y, wo.z));
+                let q32 = Query::far(
+                    V3::from_f64(wi.x, wi.y, wi.z),
+                    V3::from_f64(wo.x, wo.y, wo.z),
+                );
                 let s32: [f32; 3] = single.eval(&q32);
                 let ok = s.iter().all(|v| v.is_finite() && *v >= 0.0)
                     && s32.iter().all(|v| v.is_finite() && *v >= 0.0);

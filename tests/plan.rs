@@ -38,7 +38,10 @@ fn f32_error(
     let (mut difference, mut norm) = (0.0, 0.0);
     for (&(wi, wo), &w) in pairs.pairs().iter().zip(pairs.weights()) {
         let r = reference.eval(&Query::far(wi, wo));
-        let q = Query::far(V3::c(wi.x, wi.y, wi.z), V3::c(wo.x, wo.y, wo.z));
+        let q = Query::far(
+            V3::from_f64(wi.x, wi.y, wi.z),
+            V3::from_f64(wo.x, wo.y, wo.z),
+        );
         let s: [f32; 3] = lanes.eval(&q);
         for c in 0..3 {
             difference += w * (f64::from(s[c]) - r[c]).powi(2);

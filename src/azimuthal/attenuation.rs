@@ -2,8 +2,9 @@ use super::path::{entry, Refraction};
 use crate::absorption::PathLength;
 use crate::real::{Real, ShaderFunction, TINY};
 
-/// Number of lobes: R, TT, TRT and the residual (p >= 3).
-pub const LOBES: usize = 4;
+/// Number of attenuations the Chiang model sums: the lobes R, TT and TRT **and** the residual
+/// (p >= 3), which is not a lobe of its own but all higher orders together.
+pub const LOBES_WITH_RESIDUAL: usize = 4;
 
 /// Attenuations [A_0, A_1, A_2, A_3+] from the Fresnel reflectance `f` at the entry point and
 /// the transmittance `t` of one internal segment (Chiang et al. 2016, eqs. 3 and 6; pbrt-v4
@@ -14,7 +15,7 @@ pub const LOBES: usize = 4;
 /// absorption `f = t = 1` and the true limit is 0, which the numerator gives exactly. For
 /// `t = 1` the four terms sum to 1.
 #[inline(always)]
-pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES] {
+pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES_WITH_RESIDUAL] {
     const FUNCTION: ShaderFunction = crate::shader_function!(
         attenuations,
         "Chiang et al. 2016, eqs. 3 and 6",
@@ -34,7 +35,7 @@ pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES] {
 /// relative index `eta >= 1` and segment transmittance `t`: the entry Fresnel term is evaluated
 /// at the true angle of incidence, cos = cos(theta_o) cos(gamma_o), gamma_o = asin h
 /// ([`crate::fresnel::fresnel_from_outside`]).
-pub fn attenuations<R: Real>(cos_theta_o: R, eta: R, h: R, t: R) -> [R; LOBES] {
+pub fn attenuations<R: Real>(cos_theta_o: R, eta: R, h: R, t: R) -> [R; LOBES_WITH_RESIDUAL] {
     let (_, fresnel) = entry(cos_theta_o, h, eta, R::c(1.0) / eta);
     attenuations_from_fresnel(fresnel, t)
 }
@@ -52,7 +53,7 @@ pub fn attenuations_at_offset<R: Real>(
     eta: R,
     sigma_a: R,
     path: PathLength,
-) -> [R; LOBES] {
+) -> [R; LOBES_WITH_RESIDUAL] {
     Refraction::new(sin_theta, cos_theta, eta, R::c(1.0) / eta)
         .path(h, path)
         .attenuations(sigma_a)

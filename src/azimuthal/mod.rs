@@ -8,7 +8,9 @@ mod exit_angle;
 mod marschner;
 mod path;
 
-pub use attenuation::{attenuations, attenuations_at_offset, attenuations_from_fresnel, LOBES};
+pub use attenuation::{
+    attenuations, attenuations_at_offset, attenuations_from_fresnel, LOBES_WITH_RESIDUAL,
+};
 pub use distribution::{
     logistic, logistic_cdf, sample_trimmed_logistic, sample_wrapped_gaussian, trimmed_logistic,
     trimmed_mass, wrapped_gaussian, TrimmedLogistic, WRAPPED_GAUSSIAN_TERMS,

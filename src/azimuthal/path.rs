@@ -4,7 +4,7 @@
 //! a path (the reference BCSDF, the attenuations of the fits and the real-time models) takes it
 //! from here.
 
-use super::attenuation::{attenuations_from_fresnel, LOBES};
+use super::attenuation::{attenuations_from_fresnel, LOBES_WITH_RESIDUAL};
 use crate::absorption::{segment_length, PathLength};
 use crate::fresnel::fresnel_from_outside;
 use crate::real::{safe_sqrt, Real, ShaderFunction};
@@ -110,7 +110,7 @@ impl<R: Real> FibrePath<R> {
     /// The attenuations `[A_0, A_1, A_2, A_3+]` of the path for absorption `sigma_a` per unit
     /// radius ([`attenuations_from_fresnel`] of the entry reflectance and the transmittance).
     #[inline(always)]
-    pub fn attenuations(&self, sigma_a: R) -> [R; LOBES] {
+    pub fn attenuations(&self, sigma_a: R) -> [R; LOBES_WITH_RESIDUAL] {
         attenuations_from_fresnel(self.fresnel, self.transmittance(sigma_a))
     }
 }

@@ -452,7 +452,7 @@ mod tests {
     }
 
     fn v3<R: crate::real::Real>(d: [f32; 3]) -> V3<R> {
-        V3::c(d[0] as f64, d[1] as f64, d[2] as f64)
+        V3::from_f64(d[0] as f64, d[1] as f64, d[2] as f64)
     }
 
     /// Random directions and offsets followed by the hard cases: grazing wi/wo (x = +-1),

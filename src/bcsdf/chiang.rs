@@ -32,7 +32,7 @@ use super::inputs::{FromInputs, InputValues, HAIR_INPUTS};
 use super::model::{Bcsdf, HairSample, Model, Query, RandomNumbers, SampledBcsdf};
 use super::varying::{eta_in, roughness_in, tilt_in, InputsIn, VaryingInputs};
 use crate::absorption::PathLength;
-use crate::azimuthal::{exit_angle, FibrePath, Refraction, TrimmedLogistic, LOBES};
+use crate::azimuthal::{exit_angle, FibrePath, Refraction, TrimmedLogistic, LOBES_WITH_RESIDUAL};
 use crate::error::ParamError;
 use crate::geometry::{
     azimuth_between, local_direction, local_fibre_angles, local_sin_cos_theta, V3,
@@ -42,7 +42,7 @@ use crate::params::HairParams;
 use crate::real::{pi, powi, safe_sqrt, wrap_angle, Real, ShaderFunction, INV_TWO_PI};
 
 /// The names of the four lobes, in the order of every per-lobe array of the Chiang models.
-pub const CHIANG_LOBES: [&str; LOBES] = ["R", "TT", "TRT", "residual"];
+pub const CHIANG_LOBES: [&str; LOBES_WITH_RESIDUAL] = ["R", "TT", "TRT", "residual"];
 
 /// Longitudinal variance of the R lobe from beta_m (Chiang et al. 2016, eq. 7):
 /// `v = (0.726 b + 0.812 b^2 + 3.7 b^20)^2`, for beta_m in [1e-16, 1].
@@ -208,7 +208,7 @@ pub struct Outgoing<R> {
 
 /// `(A_p N_p per channel, w_p N_p)` for the lobes R, TT, TRT and the residual: the azimuthal
 /// factors of the value and of the pdf (w_p the lobe-choice probabilities).
-pub type AzimuthalFactors<R> = ([[R; 3]; LOBES], [R; LOBES]);
+pub type AzimuthalFactors<R> = ([[R; 3]; LOBES_WITH_RESIDUAL], [R; LOBES_WITH_RESIDUAL]);
 
 /// How a Chiang model takes the azimuthal factors across the fibre's width.
 pub trait Offsets<R: Real>: Clone {
@@ -269,11 +269,11 @@ impl<R: Real> Offsets<R> for AtOffset {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct LobeTerms<R> {
     /// M_p, tilted, for p = 0..3.
-    pub m: [R; LOBES],
+    pub m: [R; LOBES_WITH_RESIDUAL],
     /// A_p N_p per channel (N_3 = 1 / 2 pi).
-    pub an: [[R; 3]; LOBES],
+    pub an: [[R; 3]; LOBES_WITH_RESIDUAL],
     /// (probability of choosing lobe p) N_p.
-    pub wn: [R; LOBES],
+    pub wn: [R; LOBES_WITH_RESIDUAL],
 }
 
 impl<R: Real> LobeTerms<R> {
@@ -299,7 +299,7 @@ impl<R: Real> LobeTerms<R> {
 
     /// `M_p A_p N_p` per lobe and channel.
     pub fn per_lobe(&self) -> Vec<[R; 3]> {
-        (0..LOBES)
+        (0..LOBES_WITH_RESIDUAL)
             .map(|p| self.an[p].map(|an| self.m[p] * an))
             .collect()
     }
@@ -426,7 +426,12 @@ impl<R: Real, O> ChiangHair<R, O> {
     /// The path through the fibre for wo's inclination and offset `h` (clamped to [-1, 1]),
     /// and `A_p` per lobe and channel.
     #[inline(always)]
-    fn attenuations_at(&self, sin_o: R, cos_o: R, h: R) -> (FibrePath<R>, [[R; 3]; LOBES]) {
+    fn attenuations_at(
+        &self,
+        sin_o: R,
+        cos_o: R,
+        h: R,
+    ) -> (FibrePath<R>, [[R; 3]; LOBES_WITH_RESIDUAL]) {
         let u = &self.uniforms;
         let path = Refraction::new(sin_o, cos_o, u.eta, u.inv_eta).path(h, PathLength::Chord);
         let per_channel = u.sigma_a.map(|sa| path.attenuations(sa));
@@ -436,7 +441,7 @@ impl<R: Real, O> ChiangHair<R, O> {
 
     /// M_p for p = 0..3 with the tilt of each lobe.
     #[inline(always)]
-    pub(crate) fn longitudinal(&self, angles: &PairAngles<R>) -> [R; LOBES] {
+    pub(crate) fn longitudinal(&self, angles: &PairAngles<R>) -> [R; LOBES_WITH_RESIDUAL] {
         core::array::from_fn(|p| {
             let (sin_op, cos_op) = self.tilted(p, angles.out.sin_o, angles.out.cos_o);
             self.lobe(p)
@@ -472,7 +477,7 @@ impl<R: Real, O> ChiangHair<R, O> {
             let w = lobe_weights(&a);
             core::array::from_fn(|p| w[p] * n[p])
         } else {
-            [R::c(0.0); LOBES]
+            [R::c(0.0); LOBES_WITH_RESIDUAL]
         };
         (core::array::from_fn(|p| a[p].map(|x| x * n[p])), wn)
     }
@@ -508,7 +513,7 @@ impl<R: Real, O> ChiangHair<R, O> {
         let mut chosen = [R::c(0.0); 6]; // p, lower, width, sin_op, cos_op, v_p
         for (p, &weight) in w.iter().enumerate() {
             // The intervals [lower, upper) partition [0, 1]; the last one takes the rest.
-            let upper = if p == LOBES - 1 {
+            let upper = if p == LOBES_WITH_RESIDUAL - 1 {
                 R::c(2.0)
             } else {
                 lower + weight
@@ -546,14 +551,14 @@ impl<R: Real, O> ChiangHair<R, O> {
             R::c(2.0) * pi::<R>() * uc,
             exit_angle(p, path.gamma_o, path.gamma_t) + self.logistic().sample(uc),
         );
-        let phi_o = azimuth_between(V3::c(1.0, 0.0, 0.0), V3::c(0.0, 1.0, 0.0), wo);
+        let phi_o = azimuth_between(V3::from_f64(1.0, 0.0, 0.0), V3::from_f64(0.0, 1.0, 0.0), wo);
         local_direction(sin_i, cos_i, wrap_angle(phi_o + wrap_angle(dphi)))
     }
 }
 
 /// Probability of choosing each lobe when sampling from wo: the channel-averaged A_p,
 /// normalised (pbrt-v4 `ApPDF`).
-fn lobe_weights<R: Real>(a: &[[R; 3]; LOBES]) -> [R; LOBES] {
+fn lobe_weights<R: Real>(a: &[[R; 3]; LOBES_WITH_RESIDUAL]) -> [R; LOBES_WITH_RESIDUAL] {
     let avg = a.map(|ch| (ch[0] + ch[1] + ch[2]) * R::c(1.0 / 3.0));
     let total = (avg[0] + avg[1] + avg[2] + avg[3]).max(R::c(1e-30));
     avg.map(|x| x / total)

@@ -36,7 +36,7 @@ use super::chiang::{
 use super::inputs::{FromInputs, Input, InputKind, InputValues, HAIR_INPUTS};
 use super::model::{Bcsdf, Query};
 use super::varying::{InputsIn, VaryingInputs};
-use crate::azimuthal::{exit_angle, refracted_offset, LOBES};
+use crate::azimuthal::{exit_angle, refracted_offset, LOBES_WITH_RESIDUAL};
 use crate::error::ParamError;
 use crate::geometry::V3;
 use crate::params::HairParams;
@@ -160,7 +160,7 @@ fn add_weighted<R: Real>(sums: &mut [R], weight: R, values: &[R]) {
 
 /// The first twelve sums as `[lobe][channel]`.
 #[inline(always)]
-fn per_lobe<R: Real>(sums: &[R]) -> [[R; 3]; LOBES] {
+fn per_lobe<R: Real>(sums: &[R]) -> [[R; 3]; LOBES_WITH_RESIDUAL] {
     core::array::from_fn(|p| core::array::from_fn(|c| sums[3 * p + c]))
 }
 
@@ -207,7 +207,7 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
                 add_weighted(&mut s, w, node(h).0.as_flattened());
                 s
             });
-            (per_lobe(&sums), [R::c(0.0); LOBES])
+            (per_lobe(&sums), [R::c(0.0); LOBES_WITH_RESIDUAL])
         }
     }
 
@@ -258,14 +258,15 @@ impl<R: Real> ChiangHair<R, OffsetNodes<R>> {
         ChiangHair::from_uniforms(*self.uniforms())
     }
 
-    /// `(N_p A_p per channel, w_p N_p)` averaged over the rule's offsets, for relative azimuth
-    /// `phi = phi_i - phi_o` and the inclination of wo. `N_p` here includes the attenuation:
-    /// `1/2 int A_p(h) D(phi - Phi(p, h)) dh`.
-    pub fn azimuthal(&self, sin_o: R, cos_o: R, phi: R) -> AzimuthalFactors<R> {
+    /// `(N_p A_p per channel, w_p N_p)` averaged over the rule's offsets, for the relative
+    /// azimuth `phi_i_minus_o = phi_i - phi_o` of the lobes (pbrt's and Chiang's convention:
+    /// the **negative** of [`crate::geometry::FibreAngles::phi`]) and the inclination of wo.
+    /// `N_p` here includes the attenuation: `1/2 int A_p(h) D(phi - Phi(p, h)) dh`.
+    pub fn azimuthal(&self, sin_o: R, cos_o: R, phi_i_minus_o: R) -> AzimuthalFactors<R> {
         let at = Outgoing {
             sin_o,
             cos_o,
-            phi,
+            phi: phi_i_minus_o,
             h: R::c(0.0),
         };
         self.offsets().azimuthal::<_, true>(self, at)
@@ -304,6 +305,14 @@ impl ReferenceFarField {
     pub fn near_field(&self) -> &ChiangHair<f64> {
         &self.hair
     }
+
+    /// S at `query` per lobe and in total, with the integrator's error estimate
+    /// ([`ChiangHair::far_field_reference`] at this tolerance); [`Bcsdf::eval`] gives the
+    /// total alone.
+    pub fn eval_with_error(&self, query: &Query<f64>) -> FarFieldReference {
+        self.hair
+            .far_field_reference(query.wi, query.wo, self.rel_tol)
+    }
 }
 
 impl Bcsdf<f64> for ReferenceFarField {
@@ -312,10 +321,7 @@ impl Bcsdf<f64> for ReferenceFarField {
     }
 
     fn eval_lobes(&self, query: &Query<f64>) -> Vec<[f64; 3]> {
-        self.hair
-            .far_field_reference(query.wi, query.wo, self.rel_tol)
-            .lobes
-            .to_vec()
+        self.eval_with_error(query).lobes.to_vec()
     }
 }
 
@@ -431,11 +437,11 @@ impl VaryingInputs for ChiangFarField<f64> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FarFieldReference {
     /// `M_p N_p` per lobe and channel.
-    pub lobes: [[f64; 3]; LOBES],
+    pub lobes: [[f64; 3]; LOBES_WITH_RESIDUAL],
     /// `S` per channel (the sum of the lobes).
     pub value: [f64; 3],
     /// `N_p A_p` per lobe and channel, without `M_p`.
-    pub azimuthal: [[f64; 3]; LOBES],
+    pub azimuthal: [[f64; 3]; LOBES_WITH_RESIDUAL],
     /// Error estimate of the `N_p` integrals (absolute).
     pub error: f64,
 }
@@ -480,17 +486,19 @@ impl ChiangHair<f64> {
         roots
     }
 
-    /// The far-field `N_p A_p` (per lobe and channel) for relative azimuth `phi = phi_i - phi_o`
-    /// and the inclination of wo, by adaptive integration over gamma = asin h with breakpoints at
+    /// The far-field `N_p A_p` (per lobe and channel) for the relative azimuth of the lobes
+    /// `phi_i_minus_o = phi_i - phi_o` (the negative of
+    /// [`crate::geometry::FibreAngles::phi`]) and the inclination of wo, by adaptive integration over gamma = asin h with breakpoints at
     /// the peaks, to relative tolerance `rel_tol` of the largest component. Returns the values and
     /// the error estimate.
     pub fn far_field_azimuthal_reference(
         &self,
         sin_o: f64,
         cos_o: f64,
-        phi: f64,
+        phi_i_minus_o: f64,
         rel_tol: f64,
-    ) -> ([[f64; 3]; LOBES], f64) {
+    ) -> ([[f64; 3]; LOBES_WITH_RESIDUAL], f64) {
+        let phi = phi_i_minus_o;
         let breaks = self.peak_offsets(sin_o, cos_o, phi);
         let half_pi = core::f64::consts::FRAC_PI_2;
         let (flat, error) = adaptive(
@@ -503,8 +511,8 @@ impl ChiangHair<f64> {
                     h,
                 });
                 let weight = 0.5 * gamma.cos();
-                let mut out = [0.0; 3 * LOBES];
-                for p in 0..LOBES {
+                let mut out = [0.0; 3 * LOBES_WITH_RESIDUAL];
+                for p in 0..LOBES_WITH_RESIDUAL {
                     for c in 0..3 {
                         out[3 * p + c] = weight * an[p][c];
                     }
@@ -524,7 +532,8 @@ impl ChiangHair<f64> {
     }
 
     /// The far-field S at (wi, wo) with the reference integrator (see
-    /// [`ChiangHair::far_field_azimuthal_reference`]).
+    /// [`ChiangHair::far_field_azimuthal_reference`]); [`ReferenceFarField`] is the same as a
+    /// model of its own ([`ReferenceFarField::eval_with_error`]).
     pub fn far_field_reference(&self, wi: V3<f64>, wo: V3<f64>, rel_tol: f64) -> FarFieldReference {
         let angles = PairAngles::of(&Query::far(wi, wo));
         let (azimuthal, error) = self.far_field_azimuthal_reference(
@@ -536,7 +545,7 @@ impl ChiangHair<f64> {
         let terms = LobeTerms {
             m: self.longitudinal(&angles),
             an: azimuthal,
-            wn: [0.0; LOBES],
+            wn: [0.0; LOBES_WITH_RESIDUAL],
         };
         let per_lobe = terms.per_lobe();
         FarFieldReference {

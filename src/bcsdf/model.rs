@@ -125,10 +125,23 @@ pub struct RandomNumbers<R> {
 pub struct HairSample<R> {
     /// The sampled incident direction (unit, local frame).
     pub wi: V3<R>,
-    /// `S(wi, wo, h)` per channel (no cosine factor).
+    /// `S(wi, wo, h)` per channel (no cosine factor): the BCSDF's value at `wi`, **not** the
+    /// estimator weight ([`HairSample::weight`]).
     pub value: [R; 3],
-    /// The solid-angle density of `wi`; the estimator weight is `value / pdf`.
+    /// The solid-angle density of `wi`; the estimator weight is `value / pdf`
+    /// ([`HairSample::weight`]).
     pub pdf: R,
+}
+
+impl<R: Real> HairSample<R> {
+    /// The estimator weight `value / pdf` per channel (the cosine factor of the rendering
+    /// equation is the caller's; 0 where the pdf is 0).
+    pub fn weight(&self) -> [R; 3] {
+        let zero = R::c(0.0);
+        let positive = self.pdf.gt(zero);
+        let pdf = R::select(positive, self.pdf, R::c(1.0));
+        self.value.map(|v| R::select(positive, v / pdf, zero))
+    }
 }
 
 /// A hair scattering model evaluated in precision `R`.

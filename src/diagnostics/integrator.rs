@@ -2,7 +2,7 @@
 //! reference.
 
 use super::timing::ns_per_call;
-use crate::azimuthal::LOBES;
+use crate::azimuthal::LOBES_WITH_RESIDUAL;
 use crate::bcsdf::{ChiangFarField, ChiangHair, FarFieldRule};
 use crate::error::ParamError;
 use crate::params::{AzimuthalRoughness, HairParams};
@@ -91,7 +91,7 @@ pub struct IntegratorTable {
 }
 
 /// `N_p A_p` per lobe and channel at one grid point.
-type Azimuthal = [[f64; 3]; LOBES];
+type Azimuthal = [[f64; 3]; LOBES_WITH_RESIDUAL];
 
 /// A grid point: (sin theta_o, cos theta_o, phi).
 type GridPoint = (f64, f64, f64);
@@ -197,7 +197,7 @@ fn reference_values(hair: &ChiangHair<f64>, grid: &[GridPoint], tol: f64) -> Vec
 fn peaks(values: &[Azimuthal], phis: usize) -> Vec<Azimuthal> {
     let mut out = Vec::with_capacity(values.len());
     for group in values.chunks(phis.max(1)) {
-        let mut peak = [[0.0_f64; 3]; LOBES];
+        let mut peak = [[0.0_f64; 3]; LOBES_WITH_RESIDUAL];
         for value in group {
             for (pk, v) in peak.iter_mut().flatten().zip(value.iter().flatten()) {
                 *pk = pk.max(v.abs());

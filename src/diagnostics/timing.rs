@@ -32,7 +32,7 @@ fn timing_query<R: TimingScalar>(k: usize) -> Query<R> {
             cos_theta,
             core::f64::consts::TAU * b - core::f64::consts::PI,
         );
-        V3::<R>::c(w.x, w.y, w.z)
+        V3::<R>::from_f64(w.x, w.y, w.z)
     };
     Query::new(
         direction(u[0], u[1]),

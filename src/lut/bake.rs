@@ -6,7 +6,7 @@ use core::f64::consts::{FRAC_PI_2, PI};
 use super::table::{Axis, ParamValue, Table, TableMeta};
 use super::{LutError, ShapeError};
 use crate::absorption::Absorption;
-use crate::azimuthal::{CausticParams, LOBES};
+use crate::azimuthal::{CausticParams, LOBES_WITH_RESIDUAL};
 use crate::bcsdf::{ChiangHair, Marschner2003};
 use crate::error::ParamError;
 use crate::params::{
@@ -387,7 +387,7 @@ impl Baker for GerardN {
 }
 
 /// Channel count of a [`FarFieldN`] table: (R, TT, TRT, TRRT+) x (r, g, b).
-pub const FAR_FIELD_CHANNELS: usize = 3 * LOBES;
+pub const FAR_FIELD_CHANNELS: usize = 3 * LOBES_WITH_RESIDUAL;
 
 /// The far-field azimuthal function of Chiang et al. 2016 (pbrt-v4's `HairBxDF` averaged over
 /// the offset h) at a chosen absorption, over axis 0 = phi in [0, pi], axis 1 = theta_o in

@@ -665,8 +665,21 @@ traced_tests! {
         }
     }
 
+    bcsdf_hair_sample_weight ["HairSample::weight"] {
+        // S per channel and the pdf, 0 included (the weight is then 0).
+        const PDF: Arg = arg(0.0, 100.0, &[0.0, 1e-30, 1.0]);
+        case!("HairSample::weight", scalars(&[SIGMA_A, SIGMA_A, SIGMA_A, PDF]), |x| {
+            let sample = hairmath::bcsdf::HairSample {
+                wi: V3::new(x[0], x[1], x[2]),
+                value: [x[0], x[1], x[2]],
+                pdf: x[3],
+            };
+            sample.weight().to_vec()
+        });
+    }
+
     geometry_v3 [
-        "V3::new", "V3::c", "V3::dot", "V3::cross", "V3::scale", "V3::sub", "V3::add",
+        "V3::new", "V3::from_f64", "V3::dot", "V3::cross", "V3::scale", "V3::sub", "V3::add",
         "V3::to_v3", "V3::from_v3"
     ] {
         use hairmath::world::WorldVector;
@@ -675,7 +688,7 @@ traced_tests! {
             let (a, b) = (V3::new(x[0], x[1], x[2]), v3(&x[3..6]));
             let (cross, scale_sub) = (of_v3(a.cross(b)), of_v3(a.scale(x[6]) - b));
             let add = of_v3(a + WorldVector::from_v3(b.to_v3()));
-            [cross, scale_sub, add, vec![a.dot(b)], of_v3(V3::c(0.1, -2.0, 1e-30))].concat()
+            [cross, scale_sub, add, vec![a.dot(b)], of_v3(V3::from_f64(0.1, -2.0, 1e-30))].concat()
         });
     }
     geometry_fibre_angles_methods [
@@ -1004,7 +1017,7 @@ traced_tests! {
         }
         // The constructor in f32 is the f64 model rounded: the same bits as `instantiate`.
         let rule = FarFieldRule::gauss_legendre(4).unwrap();
-        let q = Query::far(V3::c(0.0, 1.0, 0.0), V3::c(0.6, 0.0, 0.8));
+        let q = Query::far(V3::from_f64(0.0, 1.0, 0.0), V3::from_f64(0.6, 0.0, 0.8));
         let direct = ChiangFarField::<f32>::with_rule(&HairParams::default(), &rule).eval(&q);
         let rounded = ChiangFarField::with_rule(&HairParams::default(), &rule).instantiate::<f32>().eval(&q);
         assert_eq!(direct, rounded);
