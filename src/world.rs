@@ -58,25 +58,24 @@ pub trait WorldVector: Copy {
     fn from_v3(v: V3<Self::Real>) -> Self;
 }
 
-impl WorldVector for glam::Vec3 {
-    type Real = f32;
-    fn to_v3(self) -> V3<f32> {
-        self.into()
-    }
-    fn from_v3(v: V3<f32>) -> Self {
-        v.into()
-    }
+/// `WorldVector` for a glam vector type of precision `$real` (through its `From` conversions
+/// with [`V3`]).
+macro_rules! glam_world_vector {
+    ($glam:ty, $real:ty) => {
+        impl WorldVector for $glam {
+            type Real = $real;
+            fn to_v3(self) -> V3<$real> {
+                self.into()
+            }
+            fn from_v3(v: V3<$real>) -> Self {
+                v.into()
+            }
+        }
+    };
 }
 
-impl WorldVector for glam::DVec3 {
-    type Real = f64;
-    fn to_v3(self) -> V3<f64> {
-        self.into()
-    }
-    fn from_v3(v: V3<f64>) -> Self {
-        v.into()
-    }
-}
+glam_world_vector!(glam::Vec3, f32);
+glam_world_vector!(glam::DVec3, f64);
 
 impl<R: Real> WorldVector for V3<R> {
     type Real = R;
