@@ -16,7 +16,8 @@
 //!   with [`glam::DVec3`], or in any [`Real`] with [`V3`]: unchecked, like [`Query::new`] (the
 //!   hot path);
 //! - [`world_query`]: the checked local query of untrusted world-space values;
-//! - [`eval_batch_world`]: the SIMD batch ([`crate::bcsdf::eval_batch`]) from slices of
+//! - [`eval_batch_world`] and [`pdf_batch_world`]: the SIMD batch
+//!   ([`crate::bcsdf::eval_batch`], [`crate::bcsdf::pdf_batch`]) from slices of
 //!   [`glam::Vec3`], every sample checked.
 //!
 //! # Examples
@@ -37,12 +38,12 @@
 //! assert!(s.iter().all(|v| v.is_finite() && *v > 0.0));
 //! ```
 
-#[cfg(doc)]
-use crate::bcsdf::eval_batch;
 use crate::bcsdf::{
-    check_lengths, check_samples, eval_checked, BatchError, BatchLanes, Bcsdf, HairSample, Query,
-    RandomNumbers, SampledBcsdf,
+    check_lengths, check_samples, eval_checked, pdf_checked, BatchError, BatchLanes, Bcsdf,
+    HairSample, Query, RandomNumbers, SampledBcsdf,
 };
+#[cfg(doc)]
+use crate::bcsdf::{eval_batch, pdf_batch};
 use crate::error::ParamError;
 use crate::geometry::{fibre_frame, local_directions, FibreFrame, V3};
 use crate::real::Real;
@@ -218,6 +219,48 @@ pub fn eval_batch_world<L: BatchLanes, M: Bcsdf<L>>(
     h: &[f32],
     out: &mut [[f32; 3]],
 ) -> Result<(), BatchError> {
+    let samples = WorldSamples { tangent, wi, wo, h };
+    world_batch(samples, out, |wi, wo, h, out| {
+        eval_checked(model, wi, wo, h, out)
+    })
+}
+
+/// [`pdf_batch`] from world-space slices, as [`eval_batch_world`] is [`eval_batch`]: the
+/// density of `wi[k]` given `wo[k]` and `h[k]` for the fibre of direction `tangent[k]`.
+///
+/// # Errors
+/// As [`eval_batch_world`]; `out` is then untouched.
+pub fn pdf_batch_world<L: BatchLanes, M: SampledBcsdf<L>>(
+    model: &M,
+    tangent: &[glam::Vec3],
+    wi: &[glam::Vec3],
+    wo: &[glam::Vec3],
+    h: &[f32],
+    out: &mut [f32],
+) -> Result<(), BatchError> {
+    let samples = WorldSamples { tangent, wi, wo, h };
+    world_batch(samples, out, |wi, wo, h, out| {
+        pdf_checked(model, wi, wo, h, out)
+    })
+}
+
+/// The inputs of a world-space batch.
+#[derive(Clone, Copy)]
+struct WorldSamples<'a> {
+    tangent: &'a [glam::Vec3],
+    wi: &'a [glam::Vec3],
+    wo: &'a [glam::Vec3],
+    h: &'a [f32],
+}
+
+/// Checks every sample of a world-space batch (lengths, tangents, directions in world space,
+/// offsets), then runs `local` on blocks of their local directions with the matching `out`.
+fn world_batch<T>(
+    samples: WorldSamples,
+    out: &mut [T],
+    local: impl Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [T]),
+) -> Result<(), BatchError> {
+    let WorldSamples { tangent, wi, wo, h } = samples;
     check_lengths(wi.len(), wo.len(), h.len(), out.len())?;
     if tangent.len() != wi.len() {
         return Err(BatchError::TangentLength {
@@ -227,7 +270,7 @@ pub fn eval_batch_world<L: BatchLanes, M: Bcsdf<L>>(
     }
     let mut block_wi = [[0.0_f32; 3]; WORLD_BLOCK];
     let mut block_wo = [[0.0_f32; 3]; WORLD_BLOCK];
-    for (start, ((tangent, wi), (wo, h))) in blocks(tangent, wi, wo, h) {
+    for (start, ((tangent, wi), (wo, h))) in blocks(samples) {
         let n = tangent.len();
         if let Some(k) = tangent.iter().position(|t| !usable_tangent(*t)) {
             let t = tangent[k];
@@ -246,7 +289,7 @@ pub fn eval_batch_world<L: BatchLanes, M: Bcsdf<L>>(
         check_samples(&block_wi[..n], &block_wo[..n], h).map_err(|e| offset_index(e, start))?;
     }
     let outs = out.chunks_mut(WORLD_BLOCK);
-    for ((_, ((tangent, wi), (wo, h))), out) in blocks(tangent, wi, wo, h).zip(outs) {
+    for ((_, ((tangent, wi), (wo, h))), out) in blocks(samples).zip(outs) {
         let n = tangent.len();
         for k in 0..n {
             let t = tangent[k] / tangent[k].abs().max_element();
@@ -254,7 +297,7 @@ pub fn eval_batch_world<L: BatchLanes, M: Bcsdf<L>>(
             block_wi[k] = [i.x, i.y, i.z];
             block_wo[k] = [o.x, o.y, o.z];
         }
-        eval_checked(model, &block_wi[..n], &block_wo[..n], h, out);
+        local(&block_wi[..n], &block_wo[..n], h, out);
     }
     Ok(())
 }
@@ -262,10 +305,7 @@ pub fn eval_batch_world<L: BatchLanes, M: Bcsdf<L>>(
 /// The world-space slices in blocks of [`WORLD_BLOCK`] samples, each with its first index.
 #[allow(clippy::type_complexity)]
 fn blocks<'a>(
-    tangent: &'a [glam::Vec3],
-    wi: &'a [glam::Vec3],
-    wo: &'a [glam::Vec3],
-    h: &'a [f32],
+    samples: WorldSamples<'a>,
 ) -> impl Iterator<
     Item = (
         usize,
@@ -276,11 +316,9 @@ fn blocks<'a>(
     ),
 > {
     let chunks = |v: &'a [glam::Vec3]| v.chunks(WORLD_BLOCK);
-    (0..).step_by(WORLD_BLOCK).zip(
-        chunks(tangent)
-            .zip(chunks(wi))
-            .zip(chunks(wo).zip(h.chunks(WORLD_BLOCK))),
-    )
+    let directions = chunks(samples.tangent).zip(chunks(samples.wi));
+    let rest = chunks(samples.wo).zip(samples.h.chunks(WORLD_BLOCK));
+    (0..).step_by(WORLD_BLOCK).zip(directions.zip(rest))
 }
 
 /// A block's error with the sample index of the whole batch.

@@ -11,7 +11,9 @@ use hairmath::geometry::V3;
 use hairmath::glam::{DQuat, DVec3, Vec3};
 use hairmath::params::HairParams;
 use hairmath::registry::MODELS;
-use hairmath::world::{eval_batch_world, world_query, WorldBcsdf, WorldSampledBcsdf};
+use hairmath::world::{
+    eval_batch_world, pdf_batch_world, world_query, WorldBcsdf, WorldSampledBcsdf,
+};
 use hairmath::ParamError;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
@@ -258,6 +260,42 @@ fn the_world_batch_agrees_with_the_f64_model() {
         }
     }
     assert!(worst < 1e-3, "world batch: worst {worst:e}");
+}
+
+#[test]
+fn the_world_pdf_batch_agrees_with_the_f64_pdf() {
+    let hair = ChiangHair::new(&HairParams::default());
+    let lanes = hair.instantiate::<BatchReal>();
+    let WorldBatch {
+        tangent,
+        wi,
+        wo,
+        h,
+        cases,
+    } = batch_inputs();
+    let mut out = vec![0.0_f32; wi.len()];
+    pdf_batch_world(&lanes, &tangent, &wi, &wo, &h, &mut out).unwrap();
+    let reference: Vec<f64> = cases
+        .iter()
+        .map(|c| hair.pdf(&Query::new(c.wi.into(), c.wo.into(), c.h)))
+        .collect();
+    let peak = reference.iter().fold(0.0_f64, |m, v| m.max(*v));
+    let worst = reference
+        .iter()
+        .zip(&out)
+        .map(|(r, v)| (r - f64::from(*v)).abs() / (r.abs() + 1e-6 * peak))
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-3, "world pdf batch: worst {worst:e}");
+    let mut bad = tangent.clone();
+    bad[2] = Vec3::ZERO;
+    let untouched = vec![7.0_f32; wi.len()];
+    let mut out = untouched.clone();
+    let error = pdf_batch_world(&lanes, &bad, &wi, &wo, &h, &mut out).unwrap_err();
+    assert!(
+        matches!(error, BatchError::Tangent { index: 2, .. }),
+        "{error}"
+    );
+    assert_eq!(out, untouched);
 }
 
 #[test]

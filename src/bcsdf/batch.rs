@@ -357,11 +357,22 @@ pub fn pdf_batch<L: BatchLanes, M: SampledBcsdf<L>>(
 ) -> Result<(), BatchError> {
     check(wi.len(), wo.len(), h.len(), out.len())?;
     check_samples(wi, wo, h)?;
+    pdf_checked(model, wi, wo, h, out);
+    Ok(())
+}
+
+/// [`pdf_batch`] of samples already checked (equal lengths, unit directions, no NaN offset).
+pub(crate) fn pdf_checked<L: BatchLanes, M: SampledBcsdf<L>>(
+    model: &M,
+    wi: &[[f32; 3]],
+    wo: &[[f32; 3]],
+    h: &[f32],
+    out: &mut [f32],
+) {
     for_each_chunk(wi, wo, h, out, |wi, wo, h, out| {
         let n = out.len().min(L::LANES);
         model.pdf(&Query::new(wi, wo, h)).store(&mut out[..n]);
     });
-    Ok(())
 }
 
 /// Samples per task of the parallel batch, a multiple of every lane count: tens of

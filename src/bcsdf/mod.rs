@@ -22,7 +22,7 @@ mod marschner;
 mod model;
 mod varying;
 
-pub(crate) use batch::{check as check_lengths, check_samples, eval_checked};
+pub(crate) use batch::{check as check_lengths, check_samples, eval_checked, pdf_checked};
 pub use batch::{
     eval_batch, pdf_batch, BatchError, BatchEval, BatchLanes, BatchLengthError, BatchReal, LANES,
 };
