@@ -109,7 +109,7 @@ impl SphereLight {
         let to_centre = self.centre - from;
         let d2 = to_centre.length_squared();
         let sin2 = self.radius * self.radius / d2;
-        if !(sin2 < 1.0) {
+        if sin2.is_nan() || sin2 >= 1.0 {
             return None;
         }
         // 1 - cos = sin^2 / (1 + cos), accurate for a small, far light.

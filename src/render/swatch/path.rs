@@ -233,7 +233,7 @@ impl Tracer<'_> {
             };
             let sample = self.hair.sample_world(hit.tangent, wo, hit.h, u);
             let weight = sample.weight();
-            if !(sample.pdf > 0.0) || weight.iter().all(|&w| w == 0.0) {
+            if sample.pdf.is_nan() || sample.pdf <= 0.0 || weight.iter().all(|&w| w == 0.0) {
                 break;
             }
             throughput = core::array::from_fn(|c| throughput[c] * weight[c]);
@@ -252,7 +252,7 @@ impl Tracer<'_> {
             if bounce + 1 >= self.settings.min_bounces {
                 let peak = throughput[0].max(throughput[1]).max(throughput[2]);
                 let survival = peak.min(self.settings.max_survival);
-                if !(uniform(rng) < survival) {
+                if uniform(rng) >= survival {
                     break;
                 }
                 throughput = throughput.map(|t| t / survival);
