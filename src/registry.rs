@@ -358,9 +358,15 @@ impl ModelEntry {
     /// (`HairParams::default()`), through the model's mapping for a real-time model (whose
     /// mapped values also replace the defaults). What the committed shaders are emitted at.
     pub fn example_values(&self) -> InputValues {
-        let hair = HairParams::default();
+        self.values_at(&HairParams::default())
+    }
+
+    /// The values of the model's inputs for the hair `hair`: a real-time model's mapped
+    /// inputs ([`ApproximationEntry::mapped_inputs`]), a reference model's the hair's own
+    /// ([`HairParams::to_inputs`]), and each other input's default.
+    pub fn values_at(&self, hair: &HairParams) -> InputValues {
         let given = match self.approximation {
-            Some(a) => (a.mapped_inputs)(&hair),
+            Some(a) => (a.mapped_inputs)(hair),
             None => hair.to_inputs(),
         };
         let mut values = InputValues::new();

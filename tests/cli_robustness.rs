@@ -106,12 +106,14 @@ fn subcommands() -> Vec<String> {
 }
 
 /// The fast subcommands of [`closed_output_and_full_disk`] and the slow ones, by name.
-const FAST: [&str; 8] = [
+const FAST: [&str; 10] = [
     "bake",
     "eval",
     "gaunt",
     "groom",
     "lut",
+    "plot",
+    "render",
     "render-gerard",
     "shader",
     "wigner3j",
@@ -197,7 +199,12 @@ fn fast_subcommands_survive_a_closed_pipe_and_a_full_disk() {
     let with_hair = |args: &[&'static str]| -> Vec<&'static str> {
         args.iter().chain(&hair_flags).copied().collect()
     };
-    let commands: Vec<(Vec<&str>, Vec<u8>)> = vec![
+    let (swatch_png, plot_png) = (scratch("closed-swatch.png"), scratch("closed-plot.png"));
+    let (swatch_arg, plot_arg) = (
+        swatch_png.to_string_lossy().into_owned(),
+        plot_png.to_string_lossy().into_owned(),
+    );
+    let mut commands: Vec<(Vec<&str>, Vec<u8>)> = vec![
         (with_hair(&["eval", "--model", "chiang"]), eval_rows(5000)),
         (
             vec![
@@ -248,6 +255,19 @@ fn fast_subcommands_survive_a_closed_pipe_and_a_full_disk() {
             vec![],
         ),
     ];
+    commands.push((
+        vec![
+            "render",
+            "--size",
+            "6",
+            "--samples",
+            "1",
+            "--out",
+            &swatch_arg,
+        ],
+        vec![],
+    ));
+    commands.push((vec!["plot", "--out", &plot_arg], vec![]));
     let names: Vec<&str> = commands.iter().map(|(a, _)| a[0]).collect();
     assert_eq!(names.len(), FAST.len());
     assert!(FAST.iter().all(|n| names.contains(n)));
@@ -255,7 +275,7 @@ fn fast_subcommands_survive_a_closed_pipe_and_a_full_disk() {
     for dir in [&lut_dir, &bake_dir, &render_dir] {
         let _ = std::fs::remove_dir_all(dir);
     }
-    for file in [&hair, &groom_out] {
+    for file in [&hair, &groom_out, &swatch_png, &plot_png] {
         let _ = std::fs::remove_file(file);
     }
 }

@@ -48,3 +48,45 @@ pub fn lobe_curves<M: Bcsdf<f64> + ?Sized>(
         })
         .collect()
 }
+
+/// S of one model against the inclination of `wi` at one relative azimuth: `wo`
+/// perpendicular to the fibre (`theta_o = 0`, azimuth 0), `wi` at `theta_i` from -90 to 90
+/// degrees and azimuth `phi`, far-field queries (h = 0).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ThetaCurve {
+    /// The relative azimuth phi, in degrees.
+    pub phi_deg: f64,
+    /// The inclinations theta_i (radians), from -pi/2 to pi/2.
+    pub theta: Vec<f64>,
+    /// S per inclination, per channel.
+    pub value: Vec<[f64; 3]>,
+}
+
+/// [`ThetaCurve`]s of `model` at each of `phis_deg`, on `samples` inclinations evenly spaced
+/// from -pi/2 to pi/2 (both ends included; at least 2).
+pub fn theta_curves<M: Bcsdf<f64> + ?Sized>(
+    model: &M,
+    phis_deg: &[f64],
+    samples: usize,
+) -> Vec<ThetaCurve> {
+    let samples = samples.max(2);
+    let theta: Vec<f64> = (0..samples)
+        .map(|k| core::f64::consts::FRAC_PI_2 * (2.0 * k as f64 / (samples - 1) as f64 - 1.0))
+        .collect();
+    let wo = local_direction(0.0, 1.0, 0.0);
+    phis_deg
+        .iter()
+        .map(|&phi_deg| {
+            let phi = phi_deg.to_radians();
+            let value = theta
+                .iter()
+                .map(|&t| model.eval(&Query::far(local_direction(t.sin(), t.cos(), phi), wo)))
+                .collect();
+            ThetaCurve {
+                phi_deg,
+                theta: theta.clone(),
+                value,
+            }
+        })
+        .collect()
+}

@@ -14,7 +14,7 @@
 //! - **Far-field integrator** ([`integrator_table`]): the error of
 //!   [`ChiangFarField::azimuthal`]'s fixed rule against the adaptive reference
 //!   [`ChiangHair::far_field_azimuthal_reference`], relative to each lobe's peak over phi.
-//! - **Lobe curves** ([`lobe_curves`]): S against the relative azimuth at fixed
+//! - **Lobe curves** ([`lobe_curves`], and [`theta_curves`] against the inclination): S against the relative azimuth at fixed
 //!   inclinations, for plots of a model beside the reference.
 //! - **Timing** ([`ns_per_eval`]): indicative wall-clock nanoseconds per call of any model, on
 //!   deterministic inputs ([`crate::quadrature::kronecker`]).
@@ -57,7 +57,7 @@ mod report;
 mod timing;
 
 pub use comparison::{DirectionPairs, EnergyReference, ModelError, OpCounts, ReferenceSamples};
-pub use curves::{lobe_curves, LobeCurve};
+pub use curves::{lobe_curves, theta_curves, LobeCurve, ThetaCurve};
 pub use energy::{lobe_energies, LobeEnergies};
 pub use furnace::{albedo, viewing_direction, white_furnace, Furnace, FurnaceCase, VIEW_AZIMUTH};
 pub use integrator::{

@@ -16,6 +16,10 @@
 //! [`compare_gerard`] renders the three and measures the two approximations against the
 //! reference.
 //!
+//! [`swatch`] renders a procedural hair swatch two ways: a path tracer with the Chiang model
+//! (multiple importance sampling, Russian roulette) and a single-scattering direct-light
+//! shader for any model, under the same light.
+//!
 //! Conventions: the camera looks along -Z, so every hit is seen from `wo = +Z`; the shading
 //! point is the point of the strand's axis nearest to the ray's entry into its cylinder (the
 //! points a transmittance bake samples are on the axis); the first hit is shaded opaque (no
@@ -26,7 +30,9 @@ mod camera;
 mod comparison;
 mod image;
 mod lighting;
+mod output;
 pub mod shading;
+pub mod swatch;
 
 pub use camera::{first_hits, Camera, Hit};
 #[cfg(feature = "fit")]
@@ -38,3 +44,6 @@ pub use comparison::{
 };
 pub use image::{image_error, render, Image, ImageError};
 pub use lighting::{DirectionalLight, Sky};
+pub use output::side_by_side;
+#[cfg(feature = "png")]
+pub use output::write_png;

@@ -348,6 +348,31 @@ impl Occluders {
     /// The first cylinder the ray `origin + t direction` enters at `t > 0` and that `t` (the
     /// ray starting inside a cylinder enters it at `t = 0`), or `None` if it crosses none.
     pub fn first_hit(&self, origin: Vec3, direction: Vec3) -> Option<(f32, &Cylinder)> {
+        self.first_where(origin, direction, |_, _| true)
+    }
+
+    /// The first cylinder not of strand `own_strand` that the ray `origin + t direction`
+    /// enters from outside at `t > 0`, and that `t`: cylinders holding `origin` (fibres that
+    /// overlap the one the ray leaves) are passed through, so a ray leaving a fibre of
+    /// `own_strand` never stops where it starts.
+    pub fn next_entry(
+        &self,
+        origin: Vec3,
+        direction: Vec3,
+        own_strand: Option<u32>,
+    ) -> Option<(f32, &Cylinder)> {
+        let own = own_strand.unwrap_or(u32::MAX);
+        self.first_where(origin, direction, |c, lo| c.strand != own && lo > 0.0)
+    }
+
+    /// The first cylinder crossed at `t > 0` among those `accept(cylinder, entry)` accepts
+    /// (`entry` the ray parameter where the line enters it, possibly negative).
+    fn first_where(
+        &self,
+        origin: Vec3,
+        direction: Vec3,
+        accept: impl Fn(&Cylinder, f32) -> bool,
+    ) -> Option<(f32, &Cylinder)> {
         let inverse = safe_inverse(direction);
         let ray_origin = Vec3A::from(origin);
         let mut best: Option<(f32, &Cylinder)> = None;
@@ -359,7 +384,7 @@ impl Occluders {
                         continue;
                     };
                     let entry = lo.max(0.0);
-                    if hi > 0.0 && best.is_none_or(|(t, _)| entry < t) {
+                    if hi > 0.0 && accept(cylinder, lo) && best.is_none_or(|(t, _)| entry < t) {
                         best = Some((entry, cylinder));
                     }
                 }

@@ -247,6 +247,21 @@ impl ModelFlags {
     /// A flag of an input the model does not have ([`CliError::FlagsNotForModel`]), or a
     /// required input not given ([`CliError::MissingFlag`]).
     pub fn values_for(&self, model: &ModelEntry) -> Result<InputValues, CliError> {
+        self.values_over(model, &InputValues::new())
+    }
+
+    /// The values of `model`'s inputs for the pictures (`render`, `plot`): the flags given,
+    /// then the model's values at the default hair ([`ModelEntry::example_values`]: a
+    /// real-time model's mapped inputs), then the defaults.
+    ///
+    /// # Errors
+    /// As [`ModelFlags::values_for`].
+    pub fn values_at_default_hair(&self, model: &ModelEntry) -> Result<InputValues, CliError> {
+        self.values_over(model, &model.example_values())
+    }
+
+    /// [`ModelFlags::values_for`] with `base` before the defaults.
+    fn values_over(&self, model: &ModelEntry, base: &InputValues) -> Result<InputValues, CliError> {
         if let Some((name, _)) = self
             .given
             .iter()
@@ -259,6 +274,7 @@ impl ModelFlags {
             let given = self.given.iter().find(|(n, _)| *n == input.name);
             let value = given
                 .map(|(_, v)| *v)
+                .or_else(|| base.get(input.name))
                 .or_else(|| input.default_value())
                 .ok_or_else(|| CliError::MissingFlag {
                     model: model.name,

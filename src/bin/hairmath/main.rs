@@ -12,6 +12,9 @@
 //!   scene's hair stays within a budget, and writes its shader.
 //! - `hairmath groom` writes a procedural groom as a `.hair` file, and `hairmath bake` bakes
 //!   the per-vertex SH transmittance of a `.hair` file.
+//! - `hairmath render` writes a PNG of a procedural hair swatch (path-traced with `chiang`,
+//!   single scattering with any other model), and `hairmath plot` plots a model's S beside
+//!   the reference's (PNG or SVG).
 //! - `hairmath wigner3j` and `hairmath gaunt` compute Wigner 3-j symbols and Gaunt coefficients
 //!   of rows read as CSV from stdin.
 //!
@@ -29,12 +32,14 @@ mod flags;
 mod lut;
 mod models;
 mod plan;
+mod plot;
 mod plots;
 mod render;
 mod report;
 mod sh;
 mod shader;
 mod strands;
+mod swatch;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::fmt;
@@ -183,6 +188,24 @@ enum Command {
     /// kajiya_kay, and the reference's convergence against half its directions). A progress
     /// bar shows on a terminal's stderr.
     RenderGerard(render::RenderArgs),
+    /// Render a procedural hair swatch (300 gently wavy fibres in three layers, seen face on,
+    /// orthographic) under a grey sky and a spherical key light, and write it as a PNG.
+    ///
+    /// `--model chiang` (the reference's near field, h from each hit) is path-traced: multiple
+    /// scattering, multiple importance sampling of the light and the BCSDF (power heuristic),
+    /// Russian roulette, --samples paths per pixel (unbiased; noisy at few samples). Every
+    /// other model is shaded with single scattering: the direct light and sky at the first
+    /// hit with exact visibility, by a fixed quadrature (noise-free). Model flags as for
+    /// `eval`; inputs not given take the default hair's values. Prints the mean radiance over
+    /// the fibres.
+    Render(swatch::SwatchArgs),
+    /// Plot a model's S beside the reference (Chiang's far field): against phi at theta_i =
+    /// 0, 30 and 60 degrees (theta_o = -theta_i), and against theta_i at phi = 0, 90 and 180
+    /// degrees (theta_o = 0); S is the mean over RGB.
+    ///
+    /// Writes SVG (titles, axes, legend) when --out ends in .svg, otherwise a PNG of the six
+    /// panels (grey frames, the reference black, the model red, no text).
+    Plot(plot::PlotArgs),
 }
 
 /// Why a subcommand failed.
@@ -392,6 +415,8 @@ fn main() -> ExitCode {
         Command::Groom(args) => strands::run_groom(args),
         Command::Bake(args) => strands::run_bake(args),
         Command::RenderGerard(args) => render::run(args),
+        Command::Render(args) => swatch::run(args),
+        Command::Plot(args) => plot::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
