@@ -3,10 +3,10 @@
 //! with 64 nodes in h (the comparison's reference) and with 8: `f32` scalar and the SIMD batch
 //! (`hairmath::real::BatchReal` lanes).
 //!
-//! Each model is built from its mapped inputs for brown hair (eumelanin 3) at beta_m = beta_n =
-//! 0.3, alpha = 2 degrees, eta = 1.55 (the README's table). Every benchmark processes the same
-//! 1024 deterministic direction pairs per iteration (`Throughput::Elements(1024)`): criterion's
-//! time divided by 1024 is the cost of one evaluation. The scalar path calls the model through a
+//! Each model is built from its mapped inputs for dark brown hair (eumelanin 3) at beta_m =
+//! beta_n = 0.3, alpha = 2 degrees, eta = 1.55 (the README's table). Every benchmark processes
+//! the same 1024 deterministic direction pairs per iteration (`Throughput::Elements(1024)`):
+//! criterion's time divided by 1024 is the cost of one evaluation. The scalar path calls the model through a
 //! `dyn Bcsdf<f32>` as the registry builds it (one indirect call per evaluation, for every model
 //! alike).
 //!
@@ -51,8 +51,8 @@ fn inputs() -> Inputs {
     }
 }
 
-fn brown() -> HairParams {
-    ComparisonSettings::brown().hairs[0]
+fn dark_brown() -> HairParams {
+    ComparisonSettings::dark_brown().hairs[0]
         .params()
         .expect("the README's hair is valid")
 }
@@ -89,7 +89,7 @@ fn batch(c: &mut Criterion, name: &str, model: &dyn BatchEval, inputs: &Inputs) 
 
 fn models(c: &mut Criterion) {
     let inputs = inputs();
-    let hair = brown();
+    let hair = dark_brown();
     for nodes in [64, 8] {
         let far = ChiangFarField::<f64>::with_rule(
             &hair,

@@ -14,6 +14,22 @@ pub const EUMELANIN_SIGMA_A: Rgb = [0.419, 0.697, 1.37];
 /// Pheomelanin absorption per unit concentration and radius (same source).
 pub const PHEOMELANIN_SIGMA_A: Rgb = [0.187, 0.4, 1.05];
 
+/// The names of hair colours by melanin concentration, `(name, eumelanin, pheomelanin)`
+/// ([`Absorption::from_melanin`]), on the scale of Chiang et al. 2016 as pbrt documents it
+/// (blonde about 0.3, brown about 1.3, black about 8), with dark brown between brown and black
+/// and red a blonde's eumelanin with pheomelanin added. Every named hair of the crate, its
+/// command line, tests and README means these concentrations: the report's lobe tables
+/// (`diagnostics::REPORT_HAIRS`), the model comparison (`fit::COMPARISON_COLOURS`), the
+/// example scenes (`plan::EXAMPLE_SCENES`) and [`HairParams::default`](crate::params::HairParams)
+/// (brown).
+pub const HAIR_COLOURS: [(&str, f64, f64); 5] = [
+    ("blonde", 0.3, 0.0),
+    ("red", 0.3, 2.0),
+    ("brown", 1.3, 0.0),
+    ("dark brown", 3.0, 0.0),
+    ("black", 8.0, 0.0),
+];
+
 /// The largest melanin concentration [`Absorption::from_melanin`] accepts: 1e300, far above
 /// hair's (0 to 8) and below where sigma_a would overflow.
 pub const MAX_MELANIN: f64 = 1e300;

@@ -10,13 +10,13 @@ use serde_json::Value;
 use std::process::Command;
 use std::sync::OnceLock;
 
-/// The library's rows for brown hair, computed once (without timings).
+/// The library's rows for dark brown hair, computed once (without timings).
 fn library() -> &'static [ModelRow] {
     static ROWS: OnceLock<Vec<ModelRow>> = OnceLock::new();
     ROWS.get_or_init(|| {
         let settings = ComparisonSettings {
             timing_calls: 0,
-            ..ComparisonSettings::brown()
+            ..ComparisonSettings::dark_brown()
         };
         compare_models(&settings, &|_, _| {}).unwrap()
     })
@@ -24,7 +24,8 @@ fn library() -> &'static [ModelRow] {
 
 #[test]
 fn models_json_has_the_documented_keys_and_the_library_values() {
-    let json: Value = serde_json::from_str(&hairmath(&["models", "--brown", "--json"])).unwrap();
+    let json: Value =
+        serde_json::from_str(&hairmath(&["models", "--dark-brown", "--json"])).unwrap();
     let rows = json.as_array().expect("an array of rows");
     let lib = library();
     assert_eq!(rows.len(), lib.len());
@@ -108,10 +109,10 @@ fn models_json_has_the_documented_keys_and_the_library_values() {
 
 #[test]
 fn models_markdown_prints_the_library_values() {
-    let out = hairmath(&["models", "--brown"]);
+    let out = hairmath(&["models", "--dark-brown"]);
     for r in library() {
         let cell = format!(
-            "| {} | brown | 0.3 | 0.3 | {:.3} ({:.3}) | {:.3} ({:.3}) |",
+            "| {} | dark brown | 0.3 | 0.3 | {:.3} ({:.3}) | {:.3} ({:.3}) |",
             r.model,
             r.error_mapped.full,
             r.error_mapped.half,
@@ -142,7 +143,7 @@ fn report_summarises_the_quick_comparison() {
 #[test]
 fn an_unknown_model_is_an_error_naming_the_known_ones() {
     let o = Command::new(env!("CARGO_BIN_EXE_hairmath"))
-        .args(["models", "--brown", "--model", "phong"])
+        .args(["models", "--dark-brown", "--model", "phong"])
         .output()
         .unwrap();
     assert_eq!(o.status.code(), Some(2));

@@ -349,7 +349,7 @@ fn report_quick_markdown_prints_the_library_values() {
         "| ns per fast N_p | | | ",
         "## Fitted constants (`hairmath fit`, eta = 1.55)",
         "## Speed against error (`hairmath plan`'s choices)",
-        "| kind | approximation | E blonde | cost blonde | E brown | cost brown | E black | cost black |",
+        "| kind | approximation | E blonde | cost blonde | E dark-brown | cost dark-brown | E black | cost black |",
         "### black hair: the Pareto front (",
         "| E | cost | composition |",
     ] {

@@ -288,7 +288,10 @@ fn slow_subcommands_survive_a_closed_pipe_and_a_full_disk() {
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/scenes/black.toml");
     let commands: Vec<(Vec<&str>, Vec<u8>)> = vec![
         (vec!["report", "--quick"], vec![]),
-        (vec!["models", "--brown", "--model", "kajiya-kay"], vec![]),
+        (
+            vec!["models", "--dark-brown", "--model", "kajiya-kay"],
+            vec![],
+        ),
         (vec!["fit"], vec![]),
         (vec!["plan", scene], vec![]),
     ];

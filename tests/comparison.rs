@@ -256,7 +256,7 @@ fn no_perturbation_lowers(loss: impl Fn(&[f64]) -> f64, x: &[f64], tolerance: f6
     })
 }
 
-/// Every registered approximation on the README's hair (brown, beta_m = beta_n = 0.3): E at
+/// Every registered approximation on the README's hair (dark brown, beta_m = beta_n = 0.3): E at
 /// the mapped and at the fitted inputs is converged to two significant digits (the first half
 /// of the pairs gives the same figure within 5e-3 relative), the fit converged and no
 /// perturbation of the fitted inputs lowers E by more than 1e-5 of it, and the fitted E is no
@@ -265,7 +265,7 @@ fn no_perturbation_lowers(loss: impl Fn(&[f64]) -> f64, x: &[f64], tolerance: f6
 fn every_registered_approximation_has_converged_errors_and_a_fitted_minimum() {
     let settings = ComparisonSettings {
         timing_calls: 0,
-        ..ComparisonSettings::brown()
+        ..ComparisonSettings::dark_brown()
     };
     assert!(!settings.models.is_empty());
     let rows = compare_models(&settings, &|_, _| {}).unwrap();

@@ -198,7 +198,7 @@ fn attenuation_average(sigma_a: [f64; 3], panels: usize) -> Vec<[f64; 3]> {
 ///
 /// Convergence measured (largest difference over lobes and channels; the reference changes by
 /// at most 1.2e-14 from 64 to 128 panels): with 16 nodes in h 1.36e-6 (blonde), 1.3e-7 (red),
-/// 9.9e-8 (auburn), 1.6e-9 (brown), 9.4e-11 (black); with 32 nodes 2.1e-9 (blonde), <= 5e-13
+/// 9.9e-8 (brown), 1.6e-9 (dark brown), 9.4e-11 (black); with 32 nodes 2.1e-9 (blonde), <= 5e-13
 /// (the others); with 64 nodes <= 1.7e-12 (every hair), which is the rounding of sums of 4
 /// million terms (128 nodes give 3.5e-12, not less). The sphere rule's own error at beta 0.3
 /// is about 1e-12 (the report's convergence check). Tolerances: 2e-6 for 16 nodes, 5e-9 for 32
@@ -226,7 +226,7 @@ fn lobe_energies_at_theta_0_are_the_h_average_of_the_attenuations() {
 
 /// The far field is the near field averaged over h with the same nodes, so the far field's
 /// energies equal the near field's h-average with the rule's nodes: measured difference
-/// <= 1.7e-12 (blonde; 8e-13 red and auburn, 2.3e-13 brown and black), the rounding of the two
+/// <= 1.7e-12 (blonde; 8e-13 red and brown, 2.3e-13 dark brown and black), the rounding of the two
 /// summation orders. With the report's 16 nodes in the near table the difference is the h
 /// rule's error (`far_vs_near`, measured 1.36e-6 for blonde, as the report prints).
 #[test]

@@ -112,3 +112,42 @@ fn a_missing_input_is_a_typed_error() {
     assert_eq!(e, hairmath::ParamError::Missing { name: "beta_m" });
     assert_eq!(e.to_string(), "beta_m is required");
 }
+
+/// Issue 16, item 6: a hair colour's name means one melanin concentration everywhere
+/// (`absorption::HAIR_COLOURS`): the report's lobe tables, the model comparison and its
+/// README table, and `HairParams::default` (brown, eumelanin 1.3).
+#[test]
+fn hair_colour_names_mean_one_concentration() {
+    use hairmath::absorption::HAIR_COLOURS;
+    use hairmath::diagnostics::REPORT_HAIRS;
+    use hairmath::fit::{ComparisonSettings, COMPARISON_COLOURS};
+    let named = |name: &str| {
+        *HAIR_COLOURS
+            .iter()
+            .find(|(n, _, _)| *n == name)
+            .unwrap_or_else(|| panic!("{name} is not in HAIR_COLOURS"))
+    };
+    let mut names: Vec<&str> = HAIR_COLOURS.iter().map(|c| c.0).collect();
+    names.sort_unstable();
+    names.dedup();
+    assert_eq!(names.len(), HAIR_COLOURS.len(), "one entry per name");
+    for colour in REPORT_HAIRS.iter().chain(&COMPARISON_COLOURS) {
+        assert_eq!(*colour, named(colour.0));
+    }
+    for hair in ComparisonSettings::full()
+        .hairs
+        .iter()
+        .chain(&ComparisonSettings::dark_brown().hairs)
+    {
+        assert_eq!(
+            (hair.colour, hair.eumelanin, hair.pheomelanin),
+            named(hair.colour)
+        );
+    }
+    assert_eq!(ComparisonSettings::dark_brown().hairs[0].eumelanin, 3.0);
+    let (_, eu, pheo) = named("brown");
+    assert_eq!(
+        HairParams::default().sigma_a,
+        Absorption::from_melanin(eu, pheo).unwrap()
+    );
+}

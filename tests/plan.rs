@@ -285,7 +285,7 @@ fn plans_against_the_published_models() {
     let settings = PlanSettings::default();
     println!("| hair | model | model E | model cost | plan E | plan cost | dominated |");
     println!("| --- | --- | ---: | ---: | ---: | ---: | --- |");
-    for (name, eumelanin) in [("blonde", 0.3), ("brown", 3.0), ("black", 8.0)] {
+    for (name, eumelanin) in [("blonde", 0.3), ("dark brown", 3.0), ("black", 8.0)] {
         let text = |budget: f64| {
             format!(
                 "budget = {budget}\n[hair]\neumelanin = {eumelanin}\nbeta_m = 0.3\nbeta_n = 0.3\n"

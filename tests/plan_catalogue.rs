@@ -35,6 +35,33 @@ fn every_example_scene_parses_with_its_budget() {
     }
 }
 
+/// Issue 16, item 6: each example scene is named after its hair's melanin as
+/// `absorption::HAIR_COLOURS` names it (a space written as a dash), and the name is its file's
+/// stem in `examples/scenes/`.
+#[test]
+fn example_scenes_are_named_by_their_melanin() {
+    use hairmath::absorption::HAIR_COLOURS;
+    use hairmath::plan::{HairKey, ParamRange};
+    for ((name, text), (parsed_name, scene)) in EXAMPLE_SCENES.iter().zip(example_scenes().unwrap())
+    {
+        assert_eq!(*name, parsed_name);
+        let (_, eumelanin, pheomelanin) = *HAIR_COLOURS
+            .iter()
+            .find(|(n, _, _)| n.replace(' ', "-") == *name)
+            .unwrap_or_else(|| panic!("{name} is not a colour of HAIR_COLOURS"));
+        assert_eq!(
+            (
+                scene.hair.get(HairKey::Eumelanin),
+                scene.hair.get(HairKey::Pheomelanin)
+            ),
+            (ParamRange::Fixed(eumelanin), ParamRange::Fixed(pheomelanin)),
+            "{name}"
+        );
+        let file = format!("{}/examples/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), *text, "{file}");
+    }
+}
+
 #[test]
 fn the_front_is_non_dominated_and_sorted_by_cost() {
     let c = black();

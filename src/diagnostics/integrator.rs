@@ -115,6 +115,15 @@ pub fn integrator_table(
     hair: &HairParams,
     settings: &IntegratorSettings,
 ) -> Result<IntegratorTable, ParamError> {
+    integrator_table_steps(hair, settings, &mut || {})
+}
+
+/// [`integrator_table`], calling `step` after each row and after the timings.
+pub(crate) fn integrator_table_steps(
+    hair: &HairParams,
+    settings: &IntegratorSettings,
+    step: &mut dyn FnMut(),
+) -> Result<IntegratorTable, ParamError> {
     let grid = grid(&settings.theta_o, settings.phis);
     let mut rows = Vec::with_capacity(settings.beta_n.len());
     for &beta_n in &settings.beta_n {
@@ -123,6 +132,7 @@ pub fn integrator_table(
             ..*hair
         };
         rows.push(row(&params, &grid, settings)?);
+        step();
     }
     let mut timings = Vec::with_capacity(settings.nodes.len());
     for &nodes in &settings.nodes {
@@ -134,6 +144,7 @@ pub fn integrator_table(
         });
         timings.push(NodeTiming { nodes, ns });
     }
+    step();
     Ok(IntegratorTable { rows, timings })
 }
 

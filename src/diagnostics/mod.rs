@@ -65,10 +65,10 @@ pub use integrator::{
     PEAK_FLOOR, REFERENCE_TOL, REFINED_TOL,
 };
 pub use report::{
-    report, report_hair, EnergyConvergence, EvalTiming, FurnaceRow, HairEnergies, Report,
-    ReportDetail, ReportSettings, SphereSize, FAR_NODES, FURNACE_BETAS, INTEGRATOR_NODES,
-    INTEGRATOR_SIGMA_A, REPORT_ALPHA_DEG, REPORT_BETA, REPORT_ETA, REPORT_HAIRS, SHARP_BETA,
-    TIMING_SIGMA_A,
+    report, report_hair, report_steps, report_with_progress, EnergyConvergence, EvalTiming,
+    FurnaceRow, HairEnergies, Report, ReportDetail, ReportSettings, SphereSize, FAR_NODES,
+    FURNACE_BETAS, INTEGRATOR_NODES, INTEGRATOR_SIGMA_A, REPORT_ALPHA_DEG, REPORT_BETA, REPORT_ETA,
+    REPORT_HAIRS, SHARP_BETA, TIMING_SIGMA_A,
 };
 pub use timing::{ns_per_batch_eval, ns_per_eval, TimingScalar, TIMING_INPUTS};
 

@@ -2,7 +2,7 @@
 
 use super::energy::{lobe_energies, LobeEnergies};
 use super::furnace::{viewing_direction, white_furnace, Furnace};
-use super::integrator::{integrator_table, IntegratorSettings, IntegratorTable};
+use super::integrator::{integrator_table_steps, IntegratorSettings, IntegratorTable};
 use super::timing::ns_per_eval;
 use crate::absorption::Absorption;
 use crate::bcsdf::{ChiangFarField, ChiangHair, FarFieldRule};
@@ -19,14 +19,9 @@ pub const REPORT_ALPHA_DEG: f64 = 2.0;
 /// Relative index of refraction of every configuration of the report.
 pub const REPORT_ETA: f64 = 1.55;
 /// The hair colours of the lobe-energy tables: name, eumelanin, pheomelanin
-/// ([`Absorption::from_melanin`]).
-pub const REPORT_HAIRS: [(&str, f64, f64); 5] = [
-    ("blonde", 0.3, 0.0),
-    ("red", 0.3, 2.0),
-    ("auburn", 1.3, 0.0),
-    ("brown", 3.0, 0.0),
-    ("black", 8.0, 0.0),
-];
+/// ([`Absorption::from_melanin`]): every named colour of
+/// [`HAIR_COLOURS`](crate::absorption::HAIR_COLOURS).
+pub const REPORT_HAIRS: [(&str, f64, f64); 5] = crate::absorption::HAIR_COLOURS;
 /// Roughnesses (beta_m = beta_n) of the white-furnace checks.
 pub const FURNACE_BETAS: [f64; 5] = [0.1, 0.3, 0.5, 0.7, 0.9];
 /// Below this roughness the furnace uses the finer sphere rule
@@ -270,25 +265,56 @@ pub fn report_hair(beta_m: f64, beta_n: f64, sigma_a: [f64; 3]) -> Result<HairPa
 /// Computes every figure of `hairmath report` with `settings`: the near- and far-field lobe
 /// energies of [`REPORT_HAIRS`] with the near table's convergence check, the white furnace of
 /// both models for each of [`FURNACE_BETAS`], the near-field model's evaluation speed in `f64`
-/// and `f32`, and the far-field integrator table.
+/// and `f32`, and the far-field integrator table. [`report_with_progress`] is the same with a
+/// progress callback.
 ///
 /// # Errors
 /// A parameter of `settings` out of its domain (a node count outside 1..=512, a beta_n of the
 /// integrator table outside (0, 1]).
 pub fn report(settings: &ReportSettings) -> Result<Report, ParamError> {
-    let (hairs, convergence) = energies(settings)?;
-    let furnace = FURNACE_BETAS
-        .iter()
-        .map(|&beta| furnace_row(beta, settings))
-        .collect::<Result<Vec<_>, _>>()?;
+    report_with_progress(settings, &|_, _| {})
+}
+
+/// The number of steps [`report_with_progress`] reports for `settings`: one per hair colour
+/// of the lobe tables, one for their convergence check, one per furnace roughness, one for
+/// the timing, one per beta_n of the integrator table and one for its timings.
+pub fn report_steps(settings: &ReportSettings) -> usize {
+    REPORT_HAIRS.len() + 1 + FURNACE_BETAS.len() + 1 + settings.integrator.beta_n.len() + 1
+}
+
+/// [`report`], calling `progress(done, total)` after each of its [`report_steps`] steps (a
+/// hair colour's lobe tables, a furnace roughness, a row of the integrator table, ...), from
+/// the calling thread, with `done` increasing by one from 1 to `total`. The steps are not of
+/// equal cost: the count says where the report is, not how long it has left. The figures are
+/// the same as [`report`]'s.
+///
+/// # Errors
+/// As [`report`].
+pub fn report_with_progress(
+    settings: &ReportSettings,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Report, ParamError> {
+    let total = report_steps(settings);
+    let mut done = 0;
+    let mut step = || {
+        done += 1;
+        progress(done, total);
+    };
+    let (hairs, convergence) = energies(settings, &mut step)?;
+    let mut furnace = Vec::with_capacity(FURNACE_BETAS.len());
+    for beta in FURNACE_BETAS {
+        furnace.push(furnace_row(beta, settings)?);
+        step();
+    }
     let timed = report_hair(REPORT_BETA, REPORT_BETA, TIMING_SIGMA_A)?;
     let timing = EvalTiming {
         calls: settings.timing_calls,
         ns_f64: ns_per_eval(&ChiangHair::<f64>::new(&timed), settings.timing_calls),
         ns_f32: ns_per_eval(&ChiangHair::<f32>::new(&timed), settings.timing_calls),
     };
+    step();
     let integrator_hair = report_hair(REPORT_BETA, REPORT_BETA, INTEGRATOR_SIGMA_A)?;
-    let integrator = integrator_table(&integrator_hair, &settings.integrator)?;
+    let integrator = integrator_table_steps(&integrator_hair, &settings.integrator, &mut step)?;
     Ok(Report {
         settings: settings.clone(),
         hairs,
@@ -299,8 +325,12 @@ pub fn report(settings: &ReportSettings) -> Result<Report, ParamError> {
     })
 }
 
-/// The lobe tables of every hair and the convergence check of the first.
-fn energies(s: &ReportSettings) -> Result<(Vec<HairEnergies>, EnergyConvergence), ParamError> {
+/// The lobe tables of every hair and the convergence check of the first, calling `step` after
+/// each hair and after the check.
+fn energies(
+    s: &ReportSettings,
+    step: &mut dyn FnMut(),
+) -> Result<(Vec<HairEnergies>, EnergyConvergence), ParamError> {
     let sphere = s.sphere.rule();
     let offsets = FarFieldRule::gauss_legendre(s.offset_nodes)?;
     let far_rule = FarFieldRule::gauss_legendre(FAR_NODES)?;
@@ -323,6 +353,7 @@ fn energies(s: &ReportSettings) -> Result<(Vec<HairEnergies>, EnergyConvergence)
                 fine_sphere_change: near.max_difference(&fine_sphere),
                 fine_offset_change: near.max_difference(&fine_h),
             });
+            step();
         }
         hairs.push(HairEnergies {
             name,
@@ -333,6 +364,7 @@ fn energies(s: &ReportSettings) -> Result<(Vec<HairEnergies>, EnergyConvergence)
             near,
             far,
         });
+        step();
     }
     let convergence = convergence.unwrap_or_else(|| unreachable!("REPORT_HAIRS is not empty"));
     Ok((hairs, convergence))

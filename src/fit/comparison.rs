@@ -18,7 +18,7 @@
 
 use super::model_inputs::{fit_model_inputs, InputFit};
 use super::optimise::FitError;
-use crate::absorption::Absorption;
+use crate::absorption::{Absorption, HAIR_COLOURS};
 use crate::bcsdf::{ChiangFarField, FarFieldRule, InputValues};
 use crate::diagnostics::{
     ns_per_batch_eval, ns_per_eval, DirectionPairs, EnergyReference, ModelError, OpCounts,
@@ -31,12 +31,13 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The hair colours of the comparison: name, eumelanin and pheomelanin concentrations
-/// ([`Absorption::from_melanin`]).
+/// ([`Absorption::from_melanin`]), named as [`HAIR_COLOURS`] names them: blonde, red, dark
+/// brown (eumelanin 3) and black.
 pub const COMPARISON_COLOURS: [(&str, f64, f64); 4] = [
-    ("blonde", 0.3, 0.0),
-    ("red", 0.3, 2.0),
-    ("brown", 3.0, 0.0),
-    ("black", 8.0, 0.0),
+    HAIR_COLOURS[0],
+    HAIR_COLOURS[1],
+    HAIR_COLOURS[3],
+    HAIR_COLOURS[4],
 ];
 /// The longitudinal roughnesses of the comparison grid.
 pub const COMPARISON_BETA_M: [f64; 3] = [0.15, 0.3, 0.6];
@@ -52,7 +53,7 @@ pub const ENERGY_THETA_O_DEG: [f64; 3] = [0.0, 45.0, 80.0];
 /// One hair of the comparison.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ComparisonHair {
-    /// Its colour's name (`brown`).
+    /// Its colour's name (`dark brown`; [`HAIR_COLOURS`]).
     pub colour: &'static str,
     /// Eumelanin concentration.
     pub eumelanin: f64,
@@ -139,14 +140,15 @@ impl ComparisonSettings {
         }
     }
 
-    /// The README's table: brown hair at beta_m = beta_n = 0.3 only, otherwise as
-    /// [`ComparisonSettings::full`].
-    pub fn brown() -> Self {
+    /// The README's table: dark brown hair (eumelanin 3, [`HAIR_COLOURS`]) at beta_m =
+    /// beta_n = 0.3 only, otherwise as [`ComparisonSettings::full`].
+    pub fn dark_brown() -> Self {
+        let (colour, eumelanin, pheomelanin) = HAIR_COLOURS[3];
         ComparisonSettings {
             hairs: vec![ComparisonHair {
-                colour: "brown",
-                eumelanin: 3.0,
-                pheomelanin: 0.0,
+                colour,
+                eumelanin,
+                pheomelanin,
                 beta_m: 0.3,
                 beta_n: 0.3,
             }],
@@ -156,16 +158,16 @@ impl ComparisonSettings {
 }
 
 impl ComparisonSettings {
-    /// [`ComparisonSettings::brown`] on less work, for tests and `hairmath report --quick`:
-    /// 2^12 pairs (fits on 2^10), albedos on 16 x 8 x 64 sphere nodes, short timings. The
-    /// errors are then rough.
+    /// [`ComparisonSettings::dark_brown`] on less work, for tests and `hairmath report
+    /// --quick`: 2^12 pairs (fits on 2^10), albedos on 16 x 8 x 64 sphere nodes, short
+    /// timings. The errors are then rough.
     pub fn quick() -> Self {
         ComparisonSettings {
             pairs: 1 << 12,
             fit_pairs: 1 << 10,
             albedo_sphere: [16, 8, 64],
             timing_calls: 20_000,
-            ..Self::brown()
+            ..Self::dark_brown()
         }
     }
 }
@@ -327,10 +329,10 @@ pub fn compare_models(
         .iter()
         .map(|name| approximation(name))
         .collect::<Result<Vec<_>, _>>()?;
-    let brown = ComparisonSettings::brown().hairs[0].params()?;
+    let dark_brown = ComparisonSettings::dark_brown().hairs[0].params()?;
     let costs = models
         .iter()
-        .map(|(_, a)| cost(a, &(a.mapped_inputs)(&brown), settings.timing_calls))
+        .map(|(_, a)| cost(a, &(a.mapped_inputs)(&dark_brown), settings.timing_calls))
         .collect::<Result<Vec<_>, _>>()?;
     let total = models.len() * settings.hairs.len();
     let done = AtomicUsize::new(0);

@@ -11,7 +11,8 @@ use super::{
     GeneratedConst,
 };
 
-/// Every family of fits, in the order `hairmath fit` prints them.
+/// Every family of fits, in the order `hairmath fit` prints them. [`all_fits_with_progress`]
+/// is the same with a progress callback.
 ///
 /// # Errors
 /// The first fit that fails.
@@ -30,16 +31,36 @@ use super::{
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn all_fits(settings: &FitSettings) -> Result<FitOutput, FitError> {
-    let families = [
-        hg::hg_fits()?,
-        absorption_exponent::absorption_fits(settings)?,
-        karis::karis_fits(settings)?,
-        frostbite::frostbite_fits(settings)?,
+    all_fits_with_progress(settings, &|_, _| {})
+}
+
+/// The number of families of fits [`all_fits`] runs (Henyey-Greenstein g, absorption
+/// exponents, Karis, Frostbite): the `total` of [`all_fits_with_progress`].
+pub const FIT_FAMILIES: usize = 4;
+
+/// [`all_fits`], calling `progress(done, FIT_FAMILIES)` after each family of fits, from the
+/// calling thread, `done` from 1 to [`FIT_FAMILIES`] (none after a failed fit). The output is
+/// the same as [`all_fits`]'.
+///
+/// # Errors
+/// As [`all_fits`].
+pub fn all_fits_with_progress(
+    settings: &FitSettings,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<FitOutput, FitError> {
+    type Family = fn(&FitSettings) -> Result<FitOutput, FitError>;
+    let families: [Family; FIT_FAMILIES] = [
+        |_| hg::hg_fits(),
+        absorption_exponent::absorption_fits,
+        karis::karis_fits,
+        frostbite::frostbite_fits,
     ];
     let mut all = FitOutput::default();
-    for family in families {
+    for (k, family) in families.iter().enumerate() {
+        let family = family(settings)?;
         all.records.extend(family.records);
         all.constants.extend(family.constants);
+        progress(k + 1, FIT_FAMILIES);
     }
     Ok(all)
 }

@@ -549,6 +549,55 @@ impl Baker for FarFieldN {
 /// [`LutError::Shape`] or [`LutError::Axis`] for invalid sizes; [`LutError::TooMuchWork`]
 /// for more grid points than [`Baker::max_evaluations`], before any evaluation.
 pub fn bake(baker: &dyn Baker, sizes: &[usize]) -> Result<Table, LutError> {
+    bake_with_progress(baker, sizes, &|_, _| {})
+}
+
+/// The most progress reports of a loop over `total` evaluations (and one at its end), so that
+/// the callback costs nothing beside the evaluations.
+const PROGRESS_REPORTS: usize = 1000;
+
+/// Reports a loop's progress to a callback at most [`PROGRESS_REPORTS`] times, at equal
+/// steps, and at its end.
+struct Ticker<'a> {
+    progress: &'a (dyn Fn(usize, usize) + Sync),
+    total: usize,
+    every: usize,
+    next: usize,
+}
+
+impl<'a> Ticker<'a> {
+    /// A ticker of a loop over `total` evaluations.
+    fn new(progress: &'a (dyn Fn(usize, usize) + Sync), total: usize) -> Self {
+        let every = total.div_ceil(PROGRESS_REPORTS).max(1);
+        Ticker {
+            progress,
+            total,
+            every,
+            next: every,
+        }
+    }
+
+    /// `done` evaluations are finished (called with 1, 2, ... `total`).
+    fn tick(&mut self, done: usize) {
+        if done >= self.next || done == self.total {
+            (self.progress)(done, self.total);
+            self.next = done + self.every;
+        }
+    }
+}
+
+/// [`bake`], calling `progress(done, total)` as grid points are evaluated (`total` the number
+/// of grid points; at most about a thousand calls, at equal steps, from the calling thread,
+/// `done` increasing, the last call `(total, total)`; none when the sizes are refused). The
+/// table is the same as [`bake`]'s.
+///
+/// # Errors
+/// As [`bake`].
+pub fn bake_with_progress(
+    baker: &dyn Baker,
+    sizes: &[usize],
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Table, LutError> {
     let axes = baker.axes(sizes)?;
     let channels = baker.channels();
     let nc = channels.len();
@@ -559,6 +608,7 @@ pub fn bake(baker: &dyn Baker, sizes: &[usize]) -> Result<Table, LutError> {
     let points = total / nc;
     let mut coords = vec![0.0; axes.len()];
     let mut values = vec![0.0; nc];
+    let mut ticker = Ticker::new(progress, points);
     for flat in 0..points {
         let mut rest = flat;
         for (d, a) in axes.iter().enumerate() {
@@ -567,6 +617,7 @@ pub fn bake(baker: &dyn Baker, sizes: &[usize]) -> Result<Table, LutError> {
         }
         baker.eval(&coords, &mut values);
         data.extend(values.iter().map(|&v| v as f32));
+        ticker.tick(flat + 1);
     }
     let table = Table::new(axes, channels, data)?;
     let max = table.channel_max();
@@ -620,6 +671,22 @@ pub fn lookup_error(
     table: &Table,
     points: usize,
 ) -> Result<ErrorStats, LutError> {
+    lookup_error_with_progress(baker, table, points, &|_, _| {})
+}
+
+/// [`lookup_error`], calling `progress(done, points)` as points are measured (at most about a
+/// thousand calls, at equal steps, from the calling thread, `done` increasing, the last call
+/// `(points, points)`; none for zero points or a refused request). The figures are the same
+/// as [`lookup_error`]'s.
+///
+/// # Errors
+/// As [`lookup_error`].
+pub fn lookup_error_with_progress(
+    baker: &dyn Baker,
+    table: &Table,
+    points: usize,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<ErrorStats, LutError> {
     let dims = table.axes().len();
     let nc = table.channels().len();
     if dims != baker.dims() || nc != baker.channels().len() {
@@ -645,6 +712,7 @@ pub fn lookup_error(
         worst_channel: 0,
     };
     let (mut n_abs, mut n_rel) = (0usize, 0usize);
+    let mut ticker = Ticker::new(progress, points);
     for k in 0..points {
         crate::quadrature::kronecker(k, dims, &mut u);
         for (d, a) in table.axes().iter().enumerate() {
@@ -668,6 +736,7 @@ pub fn lookup_error(
                 n_rel += 1;
             }
         }
+        ticker.tick(k + 1);
     }
     stats.mean_abs /= n_abs.max(1) as f64;
     stats.mean_rel /= n_rel.max(1) as f64;

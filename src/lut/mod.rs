@@ -45,8 +45,9 @@ mod shared;
 mod table;
 
 pub use bake::{
-    bake, check_evaluations, error_vs_resolution, lookup_error, Baker, ErrorStats, FarFieldN,
-    GerardN, NguyenM, NguyenN, FAR_FIELD_CHANNELS, FAR_FIELD_MAX_EVALUATIONS, MAX_EVALUATIONS,
+    bake, bake_with_progress, check_evaluations, error_vs_resolution, lookup_error,
+    lookup_error_with_progress, Baker, ErrorStats, FarFieldN, GerardN, NguyenM, NguyenN,
+    FAR_FIELD_CHANNELS, FAR_FIELD_MAX_EVALUATIONS, MAX_EVALUATIONS,
 };
 #[cfg(feature = "png")]
 pub use io::write_png;

@@ -96,16 +96,16 @@
 //!
 //! # Accuracy
 //!
-//! Against Chiang's far field (`hairmath models --brown`: brown hair, beta_m = beta_n = 0.3),
-//! E = 0.69 at the mapped inputs for both variants, 0.59 at the fitted ones (beta_m 0.14,
-//! beta_n 0.44). Nearly all of it is the R lobe at grazing theta_o (70% of the squared error
-//! from theta_o > 70 degrees), where Chiang's lobe narrows in `s` and the Gaussian of fixed
-//! width does not; the albedo is 13%, 25% and 75% low at theta_o = 0, 45 and 80 degrees. TT's
-//! error is 0.21 of its own size, so the refitted offsets change E in the third digit. (A
-//! Gaussian in theta_h itself, halved and converted with Marschner's
-//! `cos theta_i / cos^2 theta_d`, measured 0.36 for brown hair and better at beta_m <= 0.3, but
-//! worse at beta_m = 0.6 and divergent where theta_d -> 90 degrees; hairmath keeps Karis'
-//! form.)
+//! Against Chiang's far field (`hairmath models --dark-brown`: dark brown hair, eumelanin 3,
+//! beta_m = beta_n = 0.3), E = 0.69 at the mapped inputs for both variants, 0.59 at the fitted
+//! ones (beta_m 0.14, beta_n 0.44). Nearly all of it is the R lobe at grazing theta_o (70% of
+//! the squared error from theta_o > 70 degrees), where Chiang's lobe narrows in `s` and the
+//! Gaussian of fixed width does not; the albedo is 13%, 25% and 75% low at theta_o = 0, 45 and
+//! 80 degrees. TT's error is 0.21 of its own size, so the refitted offsets change E in the
+//! third digit. (A Gaussian in theta_h itself, halved and converted with Marschner's
+//! `cos theta_i / cos^2 theta_d`, measured 0.36 for dark brown hair and better at
+//! beta_m <= 0.3, but worse at beta_m = 0.6 and divergent where theta_d -> 90 degrees; hairmath
+//! keeps Karis' form.)
 //!
 //! # Mapping from the physical parameters ([`Approximation::mapped_inputs`])
 //!

@@ -50,7 +50,7 @@
 //! texture follows, and S grows like 1/cos^2 theta_d there: with the texture's value the
 //! relative L2 error against Marschner over all pairs is 0.30 at 128 x 128 texels, and the
 //! error against the Chiang far field on the comparison's pairs (`hairmath models`) is 23
-//! for brown hair, a figure that grows with the number of pairs (31.7 on half of them),
+//! for dark brown hair, a figure that grows with the number of pairs (31.7 on half of them),
 //! dominated by a few pairs near that corner. hairmath computes it from the directions
 //! instead, `cos theta_d = sqrt((1 + cos theta_i cos theta_o + sin theta_i sin theta_o) / 2)`
 //! (one square root per shading point).

@@ -24,12 +24,17 @@ use crate::diagnostics::{lobe_curves, LobeCurve, OpCounts};
 use crate::models::{ComposedHair, Composition};
 use crate::registry::MODELS;
 
-/// The README's example scenes (`examples/scenes/`), `(name, scene file)`: blonde, brown and
-/// black hair (eumelanin 0.3, 3 and 8) at beta_m = beta_n = 0.3, alpha = 2 degrees,
-/// eta = 1.55, budget 0.1, directional light. The parameter sets of the report's front.
+/// The README's example scenes (`examples/scenes/`), `(name, scene file)`: blonde, dark brown
+/// and black hair (eumelanin 0.3, 3 and 8, named as
+/// [`HAIR_COLOURS`](crate::absorption::HAIR_COLOURS) names them; each name is its file's stem)
+/// at beta_m = beta_n = 0.3, alpha = 2 degrees, eta = 1.55, budget 0.1, directional light.
+/// The parameter sets of the report's front.
 pub const EXAMPLE_SCENES: [(&str, &str); 3] = [
     ("blonde", include_str!("../../examples/scenes/blonde.toml")),
-    ("brown", include_str!("../../examples/scenes/brown.toml")),
+    (
+        "dark-brown",
+        include_str!("../../examples/scenes/dark-brown.toml"),
+    ),
     ("black", include_str!("../../examples/scenes/black.toml")),
 ];
 

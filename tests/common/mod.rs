@@ -3,7 +3,8 @@
 use serde_json::Value;
 use std::process::Command;
 
-/// Runs `hairmath` with `args` and returns its stdout (the command must succeed).
+/// Runs `hairmath` with `args` and returns its stdout (the command must succeed). Its stderr
+/// is a pipe, not a terminal: it must carry no progress bar ([`assert_no_progress`]).
 pub fn hairmath(args: &[&str]) -> String {
     let o = Command::new(env!("CARGO_BIN_EXE_hairmath"))
         .args(args)
@@ -11,7 +12,20 @@ pub fn hairmath(args: &[&str]) -> String {
         .expect("the binary runs");
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "hairmath {args:?} failed: {stderr}");
+    assert_no_progress(args, &stderr);
     String::from_utf8(o.stdout).expect("UTF-8 output")
+}
+
+/// `stderr`, written by `hairmath args` to a pipe, carries no trace of a progress bar: no
+/// terminal escape codes, no carriage returns, nothing of the bars' template
+/// (`msg [=====>    ] done/total, elapsed (eta ...)`).
+pub fn assert_no_progress(args: &[&str], stderr: &str) {
+    for mark in ["\x1b", "\r", "[=", "[>", "=>", "(eta "] {
+        assert!(
+            !stderr.contains(mark),
+            "hairmath {args:?} drew a progress bar on a pipe ({mark:?}): {stderr:?}"
+        );
+    }
 }
 
 /// `value` as a number.

@@ -5,28 +5,25 @@
 
 use crate::CliError;
 use hairmath::plan::{catalogue, example_scenes, Catalogue, PlanSettings};
-use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
 use std::io::{self, Write};
 
-/// The catalogue of every example scene, with a progress bar on standard error.
+/// The catalogue of every example scene (the last stage of `hairmath report`), with a
+/// progress bar per scene on a terminal's standard error (the hairs measured,
+/// [`crate::progress`]).
 pub fn catalogues(settings: &PlanSettings) -> Result<Vec<(&'static str, Catalogue)>, CliError> {
     let scenes = example_scenes().map_err(|e| CliError::Plan(e.to_string()))?;
-    let bar = ProgressBar::new(scenes.len() as u64);
-    bar.set_style(
-        ProgressStyle::with_template("catalogue {msg} [{bar:40}] {pos}/{len} scenes, {elapsed}")
-            .expect("a valid template")
-            .progress_chars("=> "),
-    );
+    let count = scenes.len();
     let mut out = Vec::new();
-    for (name, scene) in scenes {
-        bar.set_message(name);
-        let c =
-            catalogue(&scene, settings, &|_, _| {}).map_err(|e| CliError::Plan(e.to_string()))?;
-        out.push((name, c));
-        bar.inc(1);
+    for (k, (name, scene)) in scenes.into_iter().enumerate() {
+        let bar = crate::progress::bar(format!(
+            "report 4/4: catalogue {}/{count} {name} (hairs)",
+            k + 1
+        ));
+        let c = catalogue(&scene, settings, &crate::progress::callback(&bar));
+        bar.finish_and_clear();
+        out.push((name, c.map_err(|e| CliError::Plan(e.to_string()))?));
     }
-    bar.finish_and_clear();
     Ok(out)
 }
 

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use hairmath::fit::{absorption_report, AbsorptionReport, FrostbiteReport, TABLE_SIGMA_A};
-use hairmath::fit::{all_fits, constants_source};
+use hairmath::fit::{all_fits_with_progress, constants_source};
 use hairmath::fit::{frostbite_report, AttenuationErrorTable, TtGaussianTable};
 use hairmath::fit::{ConstantFit, FitOutput, FitSettings};
 
@@ -32,10 +32,21 @@ pub struct FitArgs {
     details: bool,
 }
 
-/// Runs every fit for the given settings.
+/// Runs every fit for the given settings, with a progress bar on a terminal's stderr.
 pub fn fits(eta: f64) -> Result<(FitSettings, FitOutput), CliError> {
+    let bar = crate::progress::bar("fitting (families)");
+    let fits = fits_with_progress(eta, &crate::progress::callback(&bar));
+    bar.finish_and_clear();
+    fits
+}
+
+/// Runs every fit for the given settings, calling `progress(done, total)` after each family.
+pub fn fits_with_progress(
+    eta: f64,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(FitSettings, FitOutput), CliError> {
     let settings = FitSettings::new(eta)?;
-    let output = all_fits(&settings)?;
+    let output = all_fits_with_progress(&settings, progress)?;
     Ok((settings, output))
 }
 

@@ -8,8 +8,8 @@ use clap::{Args, ValueEnum};
 use hairmath::absorption::Absorption;
 use hairmath::azimuthal::CausticParams;
 use hairmath::lut::{
-    bake, check_evaluations, lookup_error, write_png, write_raw, Baker, FarFieldN, GerardN,
-    NguyenM, NguyenN, Table,
+    bake_with_progress, check_evaluations, lookup_error_with_progress, write_png, write_raw, Baker,
+    FarFieldN, GerardN, NguyenM, NguyenN, Table,
 };
 use hairmath::params::{AzimuthalRoughness, LobeShift, LobeWidth, MarschnerLobes, RefractiveIndex};
 
@@ -118,7 +118,10 @@ pub fn run(args: &LutArgs) -> Result<(), CliError> {
     };
     check_evaluations(baker.as_ref(), args.error_points, "error points")?;
     create_dir(&args.out)?;
-    let table = bake(baker.as_ref(), &sizes)?;
+    let bar = crate::progress::bar("baking (samples)");
+    let table = bake_with_progress(baker.as_ref(), &sizes, &crate::progress::callback(&bar));
+    bar.finish_and_clear();
+    let table = table?;
     with_stdout(|out| write_and_report(args, baker.as_ref(), &sizes, &table, out))
 }
 
@@ -146,7 +149,15 @@ fn write_and_report(
     }
     print_scales(out, table).map_err(CliError::stdout)?;
     if args.error_points > 0 {
-        let s = lookup_error(baker, table, args.error_points)?;
+        let bar = crate::progress::bar("lookup error (points)");
+        let s = lookup_error_with_progress(
+            baker,
+            table,
+            args.error_points,
+            &crate::progress::callback(&bar),
+        );
+        bar.finish_and_clear();
+        let s = s?;
         writeln!(
             out,
             "lookup vs direct at {} off-grid points: max abs {:.3e}, mean abs {:.3e}, \

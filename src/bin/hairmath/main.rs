@@ -34,6 +34,7 @@ mod models;
 mod plan;
 mod plot;
 mod plots;
+mod progress;
 mod render;
 mod report;
 mod sh;
@@ -84,9 +85,10 @@ enum Command {
     ///
     /// Lobe energies are integrals of each lobe's S_p over all incident directions (solid
     /// angle), averaged over h uniform in [-1, 1], for a viewing direction perpendicular to
-    /// the fibre. Every figure comes from `hairmath::diagnostics::report`. Takes about half a
-    /// minute in a release build; --quick shrinks every quadrature (a few seconds); --json
-    /// prints the same figures as one JSON object.
+    /// the fibre. Every figure comes from `hairmath::diagnostics::report`. Takes about a
+    /// minute in a release build (a progress bar per stage shows on a terminal's stderr);
+    /// --quick shrinks every quadrature (half a minute); --json prints the same figures as one
+    /// JSON object.
     Report(report::ReportArgs),
     /// Measure every real-time model against the reference (Chiang et al. 2016's far field):
     /// one row per model and hair of a fixed grid, with the error E at the model's mapped
@@ -96,12 +98,13 @@ enum Command {
     /// E = sqrt(sum over direction pairs and RGB of (S_model - S_ref)^2 / sum of S_ref^2), on
     /// a fixed low-discrepancy set of pairs uniform on the product of two spheres; each E comes
     /// with its value on half the pairs. The full grid (4 colours x 3 beta_m x 3 beta_n) takes
-    /// several minutes in a release build (a progress bar shows on stderr); --brown computes
-    /// the README's row set only.
+    /// several minutes in a release build (a progress bar shows on a terminal's stderr);
+    /// --dark-brown computes the README's row set only.
     Models(models::ModelsArgs),
     /// Bake a lookup table (Nguyen-Donnelly M or N textures, Gerard's N_p LUT, or a far-field
     /// N_p table), write it as raw little-endian f32 with a JSON description (and 8-bit PNG
-    /// for 2D tables) to --out, and print the error of lookup against direct evaluation.
+    /// for 2D tables) to --out, and print the error of lookup against direct evaluation. The
+    /// bake and the error points show a progress bar on a terminal's stderr.
     Lut(lut::LutArgs),
     /// Regenerate every fitted constant (Gerard's Henyey-Greenstein g and absorption
     /// exponents, Karis' closed forms, Frostbite's TT Gaussians and single-offset
@@ -111,7 +114,8 @@ enum Command {
     /// --json prints the same rows as a JSON array with the keys key, source, approximates,
     /// published, refit, metric, published_error, refit_error (null where the paper prints
     /// nothing). --write-constants PATH also writes the generated Rust file of fitted
-    /// constants. Takes a few seconds in a release build.
+    /// constants. Takes a few seconds in a release build (a progress bar by family of fits
+    /// shows on a terminal's stderr).
     Fit(fit::FitArgs),
     /// Wigner 3-j symbols (j1 j2 j3; m1 m2 m3) of rows read as CSV from stdin.
     ///

@@ -9,17 +9,16 @@ use hairmath::diagnostics::{ModelError, OpCounts};
 use hairmath::fit::{
     approximation, compare_models, ComparisonSettings, ModelRow, ENERGY_THETA_O_DEG,
 };
-use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
 use std::io::{self, Write};
 
 /// Arguments of `hairmath models`.
 #[derive(Args, Debug)]
 pub struct ModelsArgs {
-    /// Only brown hair (eumelanin 3) at beta_m = beta_n = 0.3, the README's table (the full
-    /// grid has 36 hairs).
+    /// Only dark brown hair (eumelanin 3) at beta_m = beta_n = 0.3, the README's table (the
+    /// full grid has 36 hairs).
     #[arg(long)]
-    brown: bool,
+    dark_brown: bool,
     /// Only these models (repeat the flag; default: every real-time model).
     #[arg(long = "model", value_name = "NAME")]
     models: Vec<String>,
@@ -48,8 +47,8 @@ pub struct ModelsArgs {
 
 /// Runs `hairmath models`.
 pub fn run(args: &ModelsArgs) -> Result<(), CliError> {
-    let mut settings = if args.brown {
-        ComparisonSettings::brown()
+    let mut settings = if args.dark_brown {
+        ComparisonSettings::dark_brown()
     } else {
         ComparisonSettings::full()
     };
@@ -60,15 +59,10 @@ pub fn run(args: &ModelsArgs) -> Result<(), CliError> {
             .map(|name| approximation(name).map(|(m, _)| m.name))
             .collect::<Result<_, _>>()?;
     }
-    let bar = ProgressBar::new((settings.models.len() * settings.hairs.len()) as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})")
-            .expect("a valid template")
-            .progress_chars("=> "),
-    );
-    bar.set_message("fitting models");
-    let rows = compare_models(&settings, &|done, _| bar.set_position(done as u64))?;
+    let bar = crate::progress::bar("fitting models (rows)");
+    let rows = compare_models(&settings, &crate::progress::callback(&bar));
     bar.finish_and_clear();
+    let rows = rows?;
     with_stdout(|out| {
         if args.json {
             let rows: Vec<Value> = rows.iter().map(|r| row_json(r, &settings)).collect();

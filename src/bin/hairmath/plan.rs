@@ -12,7 +12,6 @@ use hairmath::plan::{
     compare_published, plan, Plan, PlanSettings, PlannedLobe, PublishedComparison, Scene,
 };
 use hairmath::shader::{graph_shader, table_files, CommittedFile, Language, ModelShader};
-use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -51,18 +50,9 @@ pub fn run(args: &PlanArgs) -> Result<(), CliError> {
     if let Some(dir) = &args.out {
         create_dir(dir)?;
     }
-    let bar = ProgressBar::new(0);
-    bar.set_style(
-        ProgressStyle::with_template("measuring {msg} [{bar:40}] {pos}/{len} hairs, {elapsed}")
-            .expect("a valid template")
-            .progress_chars("=> "),
-    );
-    bar.set_message("compositions");
+    let bar = crate::progress::bar("measuring (hairs)");
     let settings = PlanSettings::default();
-    let result = plan(&scene, &settings, &|done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-    });
+    let result = plan(&scene, &settings, &crate::progress::callback(&bar));
     bar.finish_and_clear();
     let plan = result.map_err(|e| CliError::Plan(e.to_string()))?;
     let published =

@@ -13,7 +13,6 @@ use hairmath::render::{
 use hairmath::strands::hair_file::read_hair_file;
 use hairmath::strands::occluders::Opacity;
 use hairmath::strands::transmittance::Baker;
-use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
 use std::fs;
 use std::io::Write;
@@ -128,16 +127,16 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         gerard_sources: &gerard_sources,
         kajiya_kay: &kajiya_kay,
     };
-    let bar = progress_bar();
+    let bar = crate::progress::bar("");
     let stage = Mutex::new(None);
     let comparison = compare_gerard(&scene, &[config], &settings, &models, &|s, done, total| {
         let mut current = stage.lock().unwrap_or_else(|e| e.into_inner());
         if *current != Some(s) {
             *current = Some(s);
             bar.set_message(s.name());
-            bar.set_length(total as u64);
+            bar.set_position(0);
         }
-        bar.set_position(done as u64);
+        crate::progress::update(&bar, done, total);
     });
     bar.finish_and_clear();
     let comparison = comparison?;
@@ -217,16 +216,6 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     )
     .map_err(CliError::stdout)?;
     Ok(())
-}
-
-fn progress_bar() -> ProgressBar {
-    let bar = ProgressBar::new(1);
-    bar.set_style(
-        ProgressStyle::with_template("{msg:>16} [{bar:40}] {pos}/{len}, {elapsed} (eta {eta})")
-            .expect("a valid template")
-            .progress_chars("=> "),
-    );
-    bar
 }
 
 /// reference.png, gerard.png, kajiya_kay.png, difference.png (|gerard - reference| times

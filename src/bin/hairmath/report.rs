@@ -9,9 +9,10 @@ use crate::{with_stdout, CliError};
 use clap::Args;
 use hairmath::bcsdf::CHIANG_LOBES;
 use hairmath::diagnostics::{
-    report, EnergyConvergence, EvalTiming, Furnace, FurnaceRow, HairEnergies, IntegratorTable,
-    LobeEnergies, Report, ReportDetail, ReportSettings, FAR_NODES, INTEGRATOR_SIGMA_A, PEAK_FLOOR,
-    REFERENCE_TOL, REFINED_TOL, REPORT_ALPHA_DEG, REPORT_BETA, REPORT_ETA, SHARP_BETA,
+    report_with_progress, EnergyConvergence, EvalTiming, Furnace, FurnaceRow, HairEnergies,
+    IntegratorTable, LobeEnergies, Report, ReportDetail, ReportSettings, FAR_NODES,
+    INTEGRATOR_SIGMA_A, PEAK_FLOOR, REFERENCE_TOL, REFINED_TOL, REPORT_ALPHA_DEG, REPORT_BETA,
+    REPORT_ETA, SHARP_BETA,
 };
 use hairmath::fit::{compare_models, ComparisonSettings, ConstantFit, ModelRow};
 use hairmath::plan::{Catalogue, PlanSettings};
@@ -45,7 +46,7 @@ pub struct ReportArgs {
     ///   `beta_n`, `reference_us`, `reference_refinement`, `errors`, a list of `nodes`, `max`,
     ///   `mean`) and `timings` (a list of `nodes`, `ns`).
     /// - `fitted_constants`: the rows of `hairmath fit --json`.
-    /// - `models`: the rows of `hairmath models --brown --json` (with --quick on fewer
+    /// - `models`: the rows of `hairmath models --dark-brown --json` (with --quick on fewer
     ///   direction pairs).
     /// - `approximations`: one object per example scene (`examples/scenes/`): `scene`,
     ///   `budget`, `combinations`, `plan` (`composition`, `error`, `cost`), `published` (per
@@ -76,14 +77,28 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
     if let Some(dir) = &args.plots {
         crate::create_dir(dir)?;
     }
-    let report = report(&ReportSettings::new(detail))?;
-    let (_, fits) = crate::fit::fits(REPORT_ETA)?;
+    // One bar per stage on a terminal's stderr (crate::progress); the catalogues are the
+    // last stages, one per example scene.
+    let bar = crate::progress::bar("report 1/4: figures");
+    let report = report_with_progress(
+        &ReportSettings::new(detail),
+        &crate::progress::callback(&bar),
+    );
+    bar.finish_and_clear();
+    let report = report?;
+    let bar = crate::progress::bar("report 2/4: fits");
+    let fits = crate::fit::fits_with_progress(REPORT_ETA, &crate::progress::callback(&bar));
+    bar.finish_and_clear();
+    let (_, fits) = fits?;
     let models = if args.quick {
         ComparisonSettings::quick()
     } else {
-        ComparisonSettings::brown()
+        ComparisonSettings::dark_brown()
     };
-    let rows = compare_models(&models, &|_, _| {})?;
+    let bar = crate::progress::bar("report 3/4: models (rows)");
+    let rows = compare_models(&models, &crate::progress::callback(&bar));
+    bar.finish_and_clear();
+    let rows = rows?;
     let plan_settings = if args.quick {
         PlanSettings::quick()
     } else {
@@ -126,7 +141,7 @@ fn full_markdown(
     markdown(out, report, fits)?;
     writeln!(
         out,
-        "\n## Real-time models (`hairmath models`, brown hair, beta_m = beta_n = 0.3)\n"
+        "\n## Real-time models (`hairmath models`, dark brown hair, beta_m = beta_n = 0.3)\n"
     )?;
     crate::models::markdown(out, rows, models)?;
     approximations::markdown(out, catalogues)

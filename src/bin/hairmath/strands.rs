@@ -11,7 +11,6 @@ use hairmath::strands::transmittance::{
     bake, compare, BakeComparison, BakeSettings, Baker, FastSettings, Transmittance,
 };
 use hairmath::strands::Strands;
-use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
 use std::fs;
 use std::io::Write;
@@ -165,18 +164,14 @@ pub fn run_bake(args: &BakeArgs) -> Result<(), CliError> {
             })
         },
     };
-    let bar = ProgressBar::new(vertices.len() as u64);
-    bar.set_style(
-        ProgressStyle::with_template(
-            "baking [{bar:40}] {pos}/{len} vertices, {elapsed} (eta {eta})",
-        )
-        .expect("a valid template")
-        .progress_chars("=> "),
-    );
+    let bar = crate::progress::bar("baking (vertices)");
     let start = Instant::now();
-    let baked = bake(strands, vertices.clone(), &settings, &|done, _| {
-        bar.set_position(done as u64)
-    });
+    let baked = bake(
+        strands,
+        vertices.clone(),
+        &settings,
+        &crate::progress::callback(&bar),
+    );
     bar.finish_and_clear();
     let baked = baked?;
     let seconds = start.elapsed().as_secs_f64();
@@ -258,15 +253,21 @@ fn compare_with_exact(
         baker: Baker::Exact { directions },
         ..*settings
     };
+    let exact_bake = |directions, message: &'static str| {
+        let bar = crate::progress::bar(message);
+        let baked = bake(
+            strands,
+            vertices.clone(),
+            &exact(directions),
+            &crate::progress::callback(&bar),
+        );
+        bar.finish_and_clear();
+        baked
+    };
     let start = Instant::now();
-    let reference = bake(strands, vertices.clone(), &exact(directions), &|_, _| {})?;
+    let reference = exact_bake(directions, "exact bake (vertices)")?;
     let exact_seconds = start.elapsed().as_secs_f64();
-    let quarter = bake(
-        strands,
-        vertices,
-        &exact((directions / 4).max(1)),
-        &|_, _| {},
-    )?;
+    let quarter = exact_bake((directions / 4).max(1), "quarter bake (vertices)")?;
     Ok(Comparison {
         bake: compare(baked, &reference, COMPARISON_DIRECTIONS, 1)?,
         reference: compare(&quarter, &reference, COMPARISON_DIRECTIONS, 1)?,
