@@ -24,10 +24,7 @@ pub fn lobe_curves<M: Bcsdf<f64> + ?Sized>(
     thetas_deg: &[f64],
     samples: usize,
 ) -> Vec<LobeCurve> {
-    let samples = samples.max(2);
-    let phi: Vec<f64> = (0..samples)
-        .map(|k| core::f64::consts::PI * (2.0 * k as f64 / (samples - 1) as f64 - 1.0))
-        .collect();
+    let phi = symmetric_grid(core::f64::consts::PI, samples);
     thetas_deg
         .iter()
         .map(|&theta_deg| {
@@ -69,10 +66,7 @@ pub fn theta_curves<M: Bcsdf<f64> + ?Sized>(
     phis_deg: &[f64],
     samples: usize,
 ) -> Vec<ThetaCurve> {
-    let samples = samples.max(2);
-    let theta: Vec<f64> = (0..samples)
-        .map(|k| core::f64::consts::FRAC_PI_2 * (2.0 * k as f64 / (samples - 1) as f64 - 1.0))
-        .collect();
+    let theta = symmetric_grid(core::f64::consts::FRAC_PI_2, samples);
     let wo = local_direction(0.0, 1.0, 0.0);
     phis_deg
         .iter()
@@ -88,5 +82,13 @@ pub fn theta_curves<M: Bcsdf<f64> + ?Sized>(
                 value,
             }
         })
+        .collect()
+}
+
+/// `samples` (at least 2) values evenly spaced from `-half` to `half`, both ends included.
+fn symmetric_grid(half: f64, samples: usize) -> Vec<f64> {
+    let samples = samples.max(2);
+    (0..samples)
+        .map(|k| half * (2.0 * k as f64 / (samples - 1) as f64 - 1.0))
         .collect()
 }
