@@ -26,6 +26,8 @@ pub mod sh;
 pub mod shader;
 #[cfg(feature = "strands")]
 pub mod strands;
+#[cfg(feature = "testing")]
+pub mod testing;
 pub mod world;
 
 /// The vector types of the API ([`glam::Vec3`], [`glam::DVec3`]), re-exported so a renderer
