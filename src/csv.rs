@@ -197,6 +197,35 @@ pub fn filter(
     Ok(())
 }
 
+/// Reads a CSV with a header naming (at least) the columns `names` and calls `row` with the
+/// line number and the fields of `names` (in that order) of every non-blank row: the reading
+/// half of [`filter`], for front ends that report on all the rows at the end.
+///
+/// # Errors
+/// [`CsvError::Input`] for the first bad line, as [`filter`].
+pub fn read_rows(
+    input: impl BufRead,
+    names: &[&str],
+    mut row: impl FnMut(usize, &[&str]) -> Result<(), String>,
+) -> Result<(), CsvError> {
+    let mut lines = Lines::new(input);
+    let Some((_, header)) = lines.next_line()? else {
+        return Err(CsvError::input(1, "empty input: expected a header row"));
+    };
+    let header = header.strip_prefix('\u{feff}').unwrap_or(header);
+    let columns = Columns::from_header(header, names).map_err(|m| CsvError::input(1, m))?;
+    while let Some((number, line)) = lines.next_line()? {
+        if line.trim().is_empty() {
+            continue;
+        }
+        columns
+            .select(line)
+            .and_then(|fields| row(number, &fields))
+            .map_err(|m| CsvError::input(number, m))?;
+    }
+    Ok(())
+}
+
 /// `value` as the shorter of Rust's shortest round-trip forms, decimal (`{}`) and exponent
 /// (`{:e}`), the decimal one on a tie; any zero is `0`. `1e308` rather than 309 digits,
 /// `1.5e-90` rather than 90 zeros, `0.25` and `-0.5773502691896257` as they are. Parsing the
@@ -258,7 +287,10 @@ fn eval_query(fields: &[&str]) -> Result<Query<f64>, String> {
 }
 
 /// A finite number from the field of column `name`.
-fn finite_number(name: &str, field: &str) -> Result<f64, String> {
+///
+/// # Errors
+/// A message naming the column, for a field that is not a finite number.
+pub fn finite_number(name: &str, field: &str) -> Result<f64, String> {
     let value: f64 = field
         .parse()
         .map_err(|_| format!("column {name}: {field:?} is not a number"))?;

@@ -106,8 +106,10 @@ fn subcommands() -> Vec<String> {
 }
 
 /// The fast subcommands of [`closed_output_and_full_disk`] and the slow ones, by name.
-const FAST: [&str; 10] = [
+const FAST: [&str; 12] = [
     "bake",
+    "cases",
+    "check",
     "eval",
     "gaunt",
     "groom",
@@ -268,6 +270,10 @@ fn fast_subcommands_survive_a_closed_pipe_and_a_full_disk() {
         vec![],
     ));
     commands.push((vec!["plot", "--out", &plot_arg], vec![]));
+    commands.push((vec!["cases", "--count", "5000"], vec![]));
+    // No rows: the check passes and prints its verdict.
+    let check_header = b"wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,h,f_r,f_g,f_b\n".to_vec();
+    commands.push((vec!["check"], check_header));
     let names: Vec<&str> = commands.iter().map(|(a, _)| a[0]).collect();
     assert_eq!(names.len(), FAST.len());
     assert!(FAST.iter().all(|n| names.contains(n)));

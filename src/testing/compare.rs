@@ -96,6 +96,20 @@ where
 {
     let values: Vec<([f64; 3], [f64; 3])> =
         queries.iter().map(|q| (expected(q), actual(q))).collect();
+    compare_values(queries, &values, worst_rows)
+}
+
+/// [`compare`] of values already computed: `values[k]` is (expected, actual) at
+/// `queries[k]`.
+///
+/// # Panics
+/// If `values` and `queries` differ in length (a caller's bug, not an input).
+pub fn compare_values(
+    queries: &[Query<f64>],
+    values: &[([f64; 3], [f64; 3])],
+    worst_rows: usize,
+) -> Comparison {
+    assert_eq!(queries.len(), values.len(), "one value pair per query");
     let peak = values
         .iter()
         .flat_map(|(e, _)| e.iter())
@@ -106,7 +120,7 @@ where
     let floor = RELATIVE_FLOOR * peak;
     let mut rows: Vec<Row> = queries
         .iter()
-        .zip(&values)
+        .zip(values)
         .enumerate()
         .map(|(index, (query, &(expected, actual)))| Row {
             index,
@@ -162,9 +176,14 @@ fn row_error(expected: [f64; 3], actual: [f64; 3], floor: f64) -> f64 {
 /// The hard cases (module documentation) followed by `random` quasi-random queries: unit
 /// directions in hairmath's local frame and offsets in [-1, 1].
 pub fn test_queries(random: usize) -> Vec<Query<f64>> {
+    test_queries_from(random, 0)
+}
+
+/// [`test_queries`] with the quasi-random queries taken from index `start` of the sequence.
+pub fn test_queries_from(random: usize, start: usize) -> Vec<Query<f64>> {
     let mut queries = hard_queries();
     let mut x = [0.0; 5];
-    for k in 0..random {
+    for k in start..start.saturating_add(random) {
         kronecker(k, 5, &mut x);
         let direction = |u: f64, v: f64| {
             let sin = 2.0 * u - 1.0;

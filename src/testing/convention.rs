@@ -174,3 +174,14 @@ fn mitsuba_offset(w: DVec3) -> f64 {
         (-w.x / projection).clamp(-1.0, 1.0)
     }
 }
+
+/// The CSV columns of a query in `convention`: `wi_x..wo_z`, and `h` where the convention
+/// takes it.
+pub fn query_columns(convention: Convention) -> &'static [&'static str] {
+    let all = &crate::csv::EVAL_COLUMNS;
+    if convention.has_offset() {
+        all
+    } else {
+        &all[..6]
+    }
+}

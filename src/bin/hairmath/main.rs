@@ -29,6 +29,7 @@ mod approximations;
 mod eval;
 mod fit;
 mod flags;
+mod kit;
 mod lut;
 mod models;
 mod plan;
@@ -210,6 +211,23 @@ enum Command {
     /// Writes SVG (titles, axes, legend) when --out ends in .svg, otherwise a PNG of the six
     /// panels (grey frames, the reference black, the model red, no text).
     Plot(plot::PlotArgs),
+    /// Write test inputs for another renderer's hair BSDF as CSV (the test kit,
+    /// `hairmath::testing`): the 243 hard cases (along the tangent, grazing, wi = wo,
+    /// wi = -wo, phi = 0 and pi, h = -1, 0, 1), then --count quasi-random queries.
+    ///
+    /// Columns wi_x, wi_y, wi_z, wo_x, wo_y, wo_z and, where the convention takes it, h, in
+    /// the meaning of --convention: hairmath (tangent +X, wi towards the light), pbrt (the
+    /// same; its f is S / |wi.z|) or mitsuba (tangent +Y, wi = si.wi towards the camera, wo
+    /// towards the light, h implied by wi). Append f_r, f_g, f_b computed by your renderer
+    /// and give the file to `hairmath check`.
+    Cases(kit::CasesArgs),
+    /// Check another renderer's values against hairmath's model (the test kit): reads the
+    /// CSV of `hairmath cases` with f_r, f_g, f_b appended (the renderer's f in the meaning
+    /// of --convention) on stdin, and reports the worst and mean relative error (relative to
+    /// the value + 1e-6 of the set's largest) against the model in f64, the worst rows with
+    /// their inputs, and PASS or FAIL at --tolerance (exit status 1 on FAIL). Model flags as
+    /// for `eval`; inputs not given take the default hair's values (as `render` does).
+    Check(kit::CheckArgs),
 }
 
 /// Why a subcommand failed.
@@ -253,6 +271,13 @@ pub enum CliError {
     Plan(String),
     /// A `.hair` file could not be read or written, or a bake's output could not be written.
     Strands(String),
+    /// `hairmath check`: a row's error is above the tolerance.
+    CheckFailed {
+        /// The largest row error.
+        max_rel_error: f64,
+        /// The tolerance.
+        tolerance: f64,
+    },
     /// Reading or writing a file (or standard output) failed.
     Io {
         /// The file, or "standard output".
@@ -328,6 +353,14 @@ impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             CliError::Input { line, message } => write!(f, "line {line}: {message}"),
+            CliError::CheckFailed {
+                max_rel_error,
+                tolerance,
+            } => write!(
+                f,
+                "check failed: worst relative error {max_rel_error:e} above the tolerance \
+                 {tolerance:e}"
+            ),
             CliError::Params(e) => write!(f, "invalid parameters: {e}"),
             CliError::Lut(e) => write!(f, "lookup table: {e}"),
             CliError::Fit(e) => write!(f, "{e}"),
@@ -421,6 +454,8 @@ fn main() -> ExitCode {
         Command::RenderGerard(args) => render::run(args),
         Command::Render(args) => swatch::run(args),
         Command::Plot(args) => plot::run(args),
+        Command::Cases(args) => kit::run_cases(args),
+        Command::Check(args) => kit::run_check(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -429,6 +464,11 @@ fn main() -> ExitCode {
             if path == STDOUT && error.kind() == io::ErrorKind::BrokenPipe =>
         {
             ExitCode::SUCCESS
+        }
+        // The verdict is on stdout; status 1 tells a script the check failed.
+        Err(e @ CliError::CheckFailed { .. }) => {
+            let _ = writeln!(io::stderr(), "hairmath: {e}");
+            ExitCode::from(1)
         }
         Err(e) => {
             // Nothing more to do if stderr cannot be written either.
