@@ -8,7 +8,7 @@ use hairmath::azimuthal::{
 };
 use hairmath::bcsdf::{
     logistic_scale, Bcsdf, ChiangFarField, ChiangHair, FarFieldRule, Query, RandomNumbers,
-    SampledBcsdf,
+    ReferenceFarField, SampledBcsdf,
 };
 use hairmath::fresnel::bravais_eta_perpendicular;
 use hairmath::geometry::{local_direction, V3};
@@ -325,9 +325,12 @@ fn the_reference_is_the_near_field_averaged_over_h() {
             local_direction(theta_o.sin(), theta_o.cos(), 0.0),
         ));
     }
-    for (hair, wi, wo) in cases {
-        let hair = ChiangHair::<f64>::new(&hair);
-        let reference = hair.far_field_reference(wi, wo, 1e-10).value;
+    for (params, wi, wo) in cases {
+        let hair = ChiangHair::<f64>::new(&params);
+        let reference = ReferenceFarField::new(&params, 1e-10)
+            .unwrap()
+            .eval_with_error(&Query::far(wi, wo))
+            .value;
         let coarse = brute_far_field(&hair, wi, wo, 1 << 15);
         let fine = brute_far_field(&hair, wi, wo, 1 << 16);
         let largest = fine.iter().copied().fold(0.0, f64::max);

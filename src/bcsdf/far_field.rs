@@ -11,7 +11,7 @@
 //!   `A_p(sin gamma) D(...) cos(gamma) / 2` is smooth at the fibre's edges (in h it has
 //!   square-root endpoints), with Gauss-Legendre nodes; the weights are renormalised to sum to 1,
 //!   so the rule is exact for constant integrands and energy is conserved exactly.
-//! - [`ChiangHair::far_field_reference`]: adaptive, f64, with an error estimate; breakpoints at
+//! - [`ReferenceFarField`] ([`ReferenceFarField::eval_with_error`]): adaptive, f64, with an error estimate; breakpoints at
 //!   the offsets where phi = Phi(p, h) keep the narrow peaks of low roughness resolved, and
 //!   breakpoints where phi - Phi(p, h) wraps through pi keep the integrand smooth within every
 //!   panel (it has a kink there). Measured against the near field averaged over h by brute
@@ -274,7 +274,7 @@ impl<R: Real> ChiangHair<R, OffsetNodes<R>> {
 }
 
 /// The far field integrated over h by the adaptive reference integrator
-/// ([`ChiangHair::far_field_reference`]) to a relative tolerance: an `f64`-only model (it
+/// ([`ChiangHair::far_field_azimuthal_reference`] per azimuth) to a relative tolerance: an `f64`-only model (it
 /// solves for the integrand's peaks and refines adaptively, so it neither traces nor
 /// vectorises).
 #[derive(Clone, Debug, PartialEq)]
@@ -307,7 +307,8 @@ impl ReferenceFarField {
     }
 
     /// S at `query` per lobe and in total, with the integrator's error estimate
-    /// ([`ChiangHair::far_field_reference`] at this tolerance); [`Bcsdf::eval`] gives the
+    /// (the adaptive integral of [`ChiangHair::far_field_azimuthal_reference`] at this
+    /// tolerance); [`Bcsdf::eval`] gives the
     /// total alone.
     pub fn eval_with_error(&self, query: &Query<f64>) -> FarFieldReference {
         self.hair
@@ -532,9 +533,14 @@ impl ChiangHair<f64> {
     }
 
     /// The far-field S at (wi, wo) with the reference integrator (see
-    /// [`ChiangHair::far_field_azimuthal_reference`]); [`ReferenceFarField`] is the same as a
-    /// model of its own ([`ReferenceFarField::eval_with_error`]).
-    pub fn far_field_reference(&self, wi: V3<f64>, wo: V3<f64>, rel_tol: f64) -> FarFieldReference {
+    /// [`ChiangHair::far_field_azimuthal_reference`]); public as
+    /// [`ReferenceFarField::eval_with_error`], the far field's own type.
+    pub(crate) fn far_field_reference(
+        &self,
+        wi: V3<f64>,
+        wo: V3<f64>,
+        rel_tol: f64,
+    ) -> FarFieldReference {
         let angles = PairAngles::of(&Query::far(wi, wo));
         let (azimuthal, error) = self.far_field_azimuthal_reference(
             angles.out.sin_o,
