@@ -43,7 +43,7 @@ pub fn cases_csv(
 }
 
 /// Reads rows of a query in `convention` ([`query_columns`]) and the renderer's `f`
-/// ([`VALUE_COLUMNS`]) and compares them with `model` ([`super::compare`], keeping `worst_rows`).
+/// ([`VALUE_COLUMNS`]) and compares them with `model` ([`fn@super::compare`], keeping `worst_rows`).
 /// The rows are kept in memory (the worst rows and the set's largest value need all of them).
 ///
 /// # Errors

@@ -3,7 +3,7 @@
 //!
 //! - [`Convention`]: the directions, offset and cosine factor of pbrt's and Mitsuba 3's hair
 //!   BSDFs, converted to and from hairmath's ([`convention`]);
-//! - [`compare`]: another implementation's S against a hairmath model on the hard cases and
+//! - [`mod@compare`]: another implementation's S against a hairmath model on the hard cases and
 //!   quasi-random queries ([`test_queries`]), reported with its worst rows and their inputs;
 //! - [`check`]: the same through CSV files, for implementations in other languages
 //!   (`hairmath cases` writes the inputs, `hairmath check` reads the renderer's values).
