@@ -170,3 +170,30 @@ fn outside_their_domains_the_evaluators_give_typed_errors() {
     assert!(eta_prime_relative_error(&settings, 1.19, 0.36, FRAC_PI_2).is_err());
     assert!(eta_prime_relative_error(&settings, f64::NAN, 0.36, 0.1).is_err());
 }
+
+/// Near the smallest phi of a barely refracting fibre, h is within 1e-11 of 1, where asin(h)
+/// magnifies the closed form's rounding: the exit angle must still match to 1e-7 (a CI run found
+/// 1.6e-7 at eta' = 1.0001, u = 2.9e-4 before the denominator was written as a hypotenuse).
+/// u runs over 10^0 .. 10^-16 in steps of 10^0.04, and 0.
+#[test]
+fn exact_tt_offset_near_the_smallest_angle_of_a_weak_fibre() {
+    for eta_prime in [1.0001, 1.0003, 1.001, 1.01, 1.55] {
+        let lo = h_tt_min_phi(eta_prime).unwrap();
+        for k in 0..=400 {
+            let u = if k == 400 {
+                0.0
+            } else {
+                10f64.powf(-0.04 * k as f64)
+            };
+            let phi = lo + u * (PI - lo);
+            let h = h_tt_exact(eta_prime, phi).unwrap();
+            assert!(h.is_finite() && h <= 1.0 + 1e-12, "{h}");
+            let exit = exit_angle_of_offset(1.0, h.min(1.0), eta_prime, 0.0);
+            let error = wrap_angle(exit - phi).abs();
+            assert!(
+                error < 1e-7,
+                "eta' {eta_prime} u {u}: exit {exit} phi {phi} h {h}"
+            );
+        }
+    }
+}
