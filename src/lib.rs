@@ -17,6 +17,8 @@ pub mod params;
 #[cfg(feature = "plan")]
 pub mod plan;
 pub mod quadrature;
+#[cfg(any(feature = "strands", feature = "testing"))]
+mod random;
 pub mod real;
 pub mod registry;
 #[cfg(feature = "strands")]

@@ -6,10 +6,10 @@ use hairmath::absorption::Absorption;
 use hairmath::bcsdf::{Bcsdf, ChiangHair, Query, RandomNumbers, SampledBcsdf};
 use hairmath::geometry::{local_direction, V3};
 use hairmath::params::{HairParams, HairValues};
-use hairmath::quadrature::{gauss_legendre, SphereRule};
+use hairmath::quadrature::SphereRule;
+use hairmath::testing::{chi_square, ChiSquareSettings, View};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
-use statrs::distribution::{ChiSquared, ContinuousCDF};
 
 const ALPHA: f64 = 2.0 * std::f64::consts::PI / 180.0;
 
@@ -132,74 +132,10 @@ fn lossless_sample_weights_are_one() {
     }
 }
 
-/// Pearson's chi-square test of sampled directions against the pdf integrated over bins
-/// (32 bins in sin(theta_i), equal solid angle, by 64 in phi_i; 8 x 8 Gauss-Legendre per bin).
-/// Bins with fewer than 5 expected samples are pooled. Significance 1e-3 per configuration.
-fn chi_square(
-    params: HairParams,
-    wo: V3<f64>,
-    h: f64,
-    samples: usize,
-    seed: u64,
-) -> (f64, usize, f64) {
-    const NU: usize = 32;
-    const NPHI: usize = 64;
-    let pi = std::f64::consts::PI;
-    let model = ChiangHair::<f64>::new(&params);
-    let mut observed = vec![0.0; NU * NPHI];
-    let mut rng = Pcg64::seed_from_u64(seed);
-    for _ in 0..samples {
-        let s = model.sample(wo, h, numbers([rng.random(), rng.random()], rng.random()));
-        let u = ((s.wi.x + 1.0) * 0.5 * NU as f64).clamp(0.0, NU as f64 - 1.0) as usize;
-        let phi = s.wi.z.atan2(s.wi.y);
-        let j = ((phi + pi) / (2.0 * pi) * NPHI as f64).clamp(0.0, NPHI as f64 - 1.0) as usize;
-        observed[u * NPHI + j] += 1.0;
-    }
-    let rule = gauss_legendre(8);
-    let mut expected = vec![0.0; NU * NPHI];
-    for iu in 0..NU {
-        let (u0, du) = (-1.0 + 2.0 * iu as f64 / NU as f64, 2.0 / NU as f64);
-        for jp in 0..NPHI {
-            let (p0, dp) = (
-                -pi + 2.0 * pi * jp as f64 / NPHI as f64,
-                2.0 * pi / NPHI as f64,
-            );
-            let mut sum = 0.0;
-            for &(x, wx) in &rule {
-                let s = u0 + du * 0.5 * (x + 1.0);
-                let c = (1.0 - s * s).max(0.0).sqrt();
-                for &(y, wy) in &rule {
-                    let wi = local_direction(s, c, p0 + dp * 0.5 * (y + 1.0));
-                    sum += wx * wy * model.pdf(&Query::new(wi, wo, h));
-                }
-            }
-            expected[iu * NPHI + jp] = sum * 0.25 * du * dp * samples as f64;
-        }
-    }
-    let total: f64 = expected.iter().sum();
-    assert!(
-        (total / samples as f64 - 1.0).abs() < 1e-3,
-        "pdf integrates to {}",
-        total / samples as f64
-    );
-    let (mut stat, mut dof, mut pool_e, mut pool_o) = (0.0, 0usize, 0.0, 0.0);
-    for (e, o) in expected.iter().zip(&observed) {
-        if *e < 5.0 {
-            pool_e += e;
-            pool_o += o;
-        } else {
-            stat += (o - e) * (o - e) / e;
-            dof += 1;
-        }
-    }
-    if pool_e > 0.0 {
-        stat += (pool_o - pool_e) * (pool_o - pool_e) / pool_e.max(1e-300);
-        dof += 1;
-    }
-    let p_value = 1.0 - ChiSquared::new((dof - 1) as f64).unwrap().cdf(stat);
-    (stat, dof, p_value)
-}
-
+/// Pearson's chi-square test of sampled directions against the pdf integrated over bins, by
+/// the test kit's harness (`hairmath::testing::chi_square`: 32 bins in sin(theta_i), equal
+/// solid angle, by 64 in phi_i; bins expecting fewer than 5 samples pooled), which also checks
+/// that the pdf integrates to 1 within 1e-3. Significance 1e-3 per configuration.
 #[test]
 fn sampler_matches_pdf_by_chi_square() {
     let cases = [
@@ -209,9 +145,15 @@ fn sampler_matches_pdf_by_chi_square() {
         (hair(0.9, 0.15, melanin(8.0)), dir(0.0, 0.0), 0.0),
     ];
     for (k, (params, wo, h)) in cases.into_iter().enumerate() {
-        let (stat, dof, p) = chi_square(params, wo, h, 400_000, 100 + k as u64);
-        println!("case {k}: chi2 {stat:.1} dof {dof} p {p:.3}");
-        assert!(p > 1e-3, "case {k}: chi2 {stat} with {dof} bins, p = {p}");
+        let settings = ChiSquareSettings {
+            view: View { wo, h },
+            samples: 400_000,
+            seed: 100 + k as u64,
+            ..ChiSquareSettings::default()
+        };
+        let report = chi_square(&ChiangHair::<f64>::new(&params), &settings);
+        println!("case {k}: {report}");
+        assert!(report.passes(1e-3), "case {k}: {report}");
     }
 }
 

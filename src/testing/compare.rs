@@ -12,10 +12,11 @@
 //! quasi-random directions and offsets (the crate's Kronecker sequence), so that a report's
 //! worst row is reproducible.
 
+use super::strategies::{direction_at, HARD_DIRECTIONS};
 use crate::bcsdf::{Bcsdf, Query};
-use crate::geometry::{local_direction, V3};
+use crate::geometry::V3;
 use crate::quadrature::kronecker;
-use core::f64::consts::{PI, TAU};
+use core::f64::consts::TAU;
 
 /// The floor of the relative error, as a fraction of the set's largest value: `1e-6`.
 pub const RELATIVE_FLOOR: f64 = 1e-6;
@@ -185,42 +186,26 @@ pub fn test_queries_from(random: usize, start: usize) -> Vec<Query<f64>> {
     let mut x = [0.0; 5];
     for k in start..start.saturating_add(random) {
         kronecker(k, 5, &mut x);
-        let direction = |u: f64, v: f64| {
-            let sin = 2.0 * u - 1.0;
-            local_direction(sin, (1.0 - sin * sin).max(0.0).sqrt(), TAU * v)
-        };
-        let wi = direction(x[0], x[1]);
-        let wo = direction(x[2], x[3]);
+        let wi = direction_at(2.0 * x[0] - 1.0, TAU * x[1]);
+        let wo = direction_at(2.0 * x[2] - 1.0, TAU * x[3]);
         queries.push(Query::new(wi, wo, 2.0 * x[4] - 1.0));
     }
     queries
 }
 
-/// The hard cases: every pair of the directions below (along the tangent both ways,
-/// grazing, perpendicular, ordinary, and the reflections `wi = wo`, `wi = -wo`, phi = 0 and
-/// pi among them) at h = -1, 0 and 1.
+/// The hard cases: every pair of [`HARD_DIRECTIONS`] (along the tangent both ways, grazing,
+/// perpendicular, ordinary, and the reflections `wi = wo`, `wi = -wo`, phi = 0 and pi among
+/// them) at h = -1, 0 and 1.
 pub fn hard_queries() -> Vec<Query<f64>> {
-    let grazing = 1.0 - 1e-6;
-    let directions = [
-        (1.0, 0.0),
-        (-1.0, 0.0),
-        (grazing, 0.0),
-        (-grazing, PI),
-        (0.0, 0.0),
-        (0.0, PI),
-        (0.5, 0.3),
-        (-0.5, 0.3 + PI),
-        (0.5, 0.3 + PI),
-    ];
-    let unit = |(sin, phi): (f64, f64)| {
-        let sin: f64 = sin;
-        local_direction(sin, (1.0 - sin * sin).max(0.0).sqrt(), phi)
-    };
     let mut queries = Vec::new();
-    for &a in &directions {
-        for &b in &directions {
+    for &(sin_a, phi_a) in &HARD_DIRECTIONS {
+        for &(sin_b, phi_b) in &HARD_DIRECTIONS {
             for h in [-1.0, 0.0, 1.0] {
-                queries.push(Query::new(unit(a), unit(b), h));
+                queries.push(Query::new(
+                    direction_at(sin_a, phi_a),
+                    direction_at(sin_b, phi_b),
+                    h,
+                ));
             }
         }
     }

@@ -251,11 +251,6 @@ fn fibre_points(settings: &SwatchSettings, fibre: usize, points: &mut Vec<Vec3>)
     }
 }
 
-/// A uniform number in `[0, 1)` from `rng` (53 random bits).
-pub(crate) fn uniform(rng: &mut Pcg64Mcg) -> f64 {
-    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -20,9 +20,10 @@
 //! reproducible whatever the thread count (rayon over rows of pixels).
 
 use super::light::SwatchLight;
-use super::{uniform, Swatch, SwatchHit};
-use crate::bcsdf::{ChiangHair, RandomNumbers};
+use super::{Swatch, SwatchHit};
+use crate::bcsdf::ChiangHair;
 use crate::error::ParamError;
+use crate::random::{random_numbers, uniform};
 use crate::render::camera::Camera;
 use crate::render::Image;
 use crate::world::{WorldBcsdf, WorldSampledBcsdf};
@@ -225,12 +226,7 @@ impl Tracer<'_> {
         for bounce in 0..MAX_BOUNCES {
             let direct = self.light_sample(&hit, wo, rng);
             add_product(&mut radiance, throughput, direct);
-            let u = RandomNumbers {
-                lobe: uniform(rng),
-                longitudinal: uniform(rng),
-                cone: uniform(rng),
-                offset: uniform(rng),
-            };
+            let u = random_numbers(rng);
             let sample = self.hair.sample_world(hit.tangent, wo, hit.h, u);
             let weight = sample.weight();
             if sample.pdf.is_nan() || sample.pdf <= 0.0 || weight.iter().all(|&w| w == 0.0) {
