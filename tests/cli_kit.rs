@@ -120,7 +120,9 @@ fn bad_input_is_a_typed_error() {
         let stderr = String::from_utf8_lossy(&check.stderr);
         assert!(stderr.contains(expected), "{input}: {stderr}");
     }
-    let mitsuba_h = "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,h,f_r,f_g,f_b\n0,1,0,0,1,0,0,1,1,1\n";
+    // Directions along the normal (Mitsuba's +Y is the tangent, where only finiteness is
+    // checked).
+    let mitsuba_h = "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,h,f_r,f_g,f_b\n0,0,1,0,0,1,0,1,1,1\n";
     let check = run(&["check", "--convention", "mitsuba"], mitsuba_h);
     // Mitsuba's columns have no h: the extra column passes through unread.
     assert_eq!(check.status.code(), Some(1));
