@@ -246,3 +246,37 @@ fn a_negative_value_inside_the_domain_is_found_by_proptest() {
         "{report}"
     );
 }
+
+/// Degenerate settings give a report that fails (never a panic, never a vacuous pass): no
+/// views, no samples, no bins, an empty sphere rule.
+#[test]
+fn degenerate_settings_fail_without_panicking() {
+    let hair = brown();
+    let no_views = FurnaceSettings {
+        theta_o_deg: vec![],
+        ..FurnaceSettings::default()
+    };
+    assert!(!furnace(&hair, &no_views).passes(1.0));
+    let empty_rule = FurnaceSettings {
+        sphere: SphereSize::new(0, 8, 512),
+        ..FurnaceSettings::default()
+    };
+    let report = furnace(&hair, &empty_rule);
+    assert!(!report.passes(0.5), "{report}");
+    let no_samples = WeightSettings {
+        samples_per_view: 0,
+        ..WeightSettings::default()
+    };
+    assert!(!sample_weights(&hair, &no_samples).passes(1.0));
+    for (samples, theta_bins, phi_bins) in [(0, 32, 64), (1000, 0, 64), (1000, 32, 0)] {
+        let settings = ChiSquareSettings {
+            samples,
+            theta_bins,
+            phi_bins,
+            ..ChiSquareSettings::default()
+        };
+        let report = chi_square(&hair, &settings);
+        println!("{report}");
+        assert!(!report.passes(0.0), "{report}");
+    }
+}

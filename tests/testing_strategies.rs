@@ -3,7 +3,9 @@
 
 use hairmath::absorption::Absorption;
 use hairmath::geometry::V3;
-use hairmath::testing::strategies::{hair_params, query, random_numbers, GRAZING_SIN_THETA};
+use hairmath::testing::strategies::{
+    hair_params, melanin, query, random_numbers, GRAZING_SIN_THETA,
+};
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
@@ -81,4 +83,13 @@ fn random_numbers_are_in_the_unit_interval_and_include_its_ends() {
     assert!(all.iter().all(|u| (0.0..1.0).contains(u)));
     assert!(all.contains(&0.0));
     assert!(all.contains(&(1.0 - f64::EPSILON / 2.0)));
+}
+
+#[test]
+fn melanin_is_in_hairs_range_and_includes_its_ends() {
+    let pairs = draw(melanin(), 300);
+    let all: Vec<f64> = pairs.iter().flat_map(|&(e, p)| [e, p]).collect();
+    assert!(all.iter().all(|c| (0.0..=8.0).contains(c)));
+    assert!(pairs.iter().any(|&(e, _)| e == 0.0) && pairs.iter().any(|&(e, _)| e == 8.0));
+    assert!(pairs.iter().any(|&(_, p)| p == 0.0) && pairs.iter().any(|&(_, p)| p == 8.0));
 }

@@ -57,13 +57,16 @@ impl FurnaceReport {
             .max_by(|a, b| a.error.abs().total_cmp(&b.error.abs()))
     }
 
-    /// Whether every view's albedo is 1 within `tolerance` in every channel (a NaN fails).
+    /// Whether there was a view and every view's albedo is 1 within `tolerance` in every
+    /// channel (a NaN fails).
     pub fn passes(&self, tolerance: f64) -> bool {
-        self.furnace
-            .cases
-            .iter()
-            .flat_map(|c| c.albedo)
-            .all(|a| (a - 1.0).abs() <= tolerance)
+        !self.furnace.cases.is_empty()
+            && self
+                .furnace
+                .cases
+                .iter()
+                .flat_map(|c| c.albedo)
+                .all(|a| (a - 1.0).abs() <= tolerance)
     }
 }
 

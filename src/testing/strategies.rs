@@ -10,7 +10,8 @@
 //! | beta_m, beta_n ([`roughness`]) | 0.01 (variance 1e-4, where I0 overflows outside log space), 1 | [0.01, 1] |
 //! | alpha ([`tilt`]) | 0, 2 degrees, +-10 degrees | [-10, 10] degrees |
 //! | eta ([`index`]) | 1.001 (close to 1), 1.55 (human hair), 3 | [1.001, 3] |
-//! | sigma_a ([`absorption`]) | 0 (the furnace's), 20 (very dark) | melanin in [0, 8] and [0, 20] per channel |
+//! | melanin ([`melanin`]) | 0, 8 | [0, 8] each |
+//! | sigma_a ([`absorption`]) | 0 (the furnace's), 20 (very dark) | from melanin, or [0, 20] per channel |
 //! | h ([`offset`]) | -1, 0, 1 | [-1, 1] |
 //! | directions ([`direction`]) | along the tangent both ways, grazing, perpendicular ([`HARD_DIRECTIONS`]) | uniform on the sphere |
 //!
@@ -95,10 +96,17 @@ pub fn index() -> impl Strategy<Value = RefractiveIndex> + Clone {
         .prop_filter_map("an index in (1, 3]", |e| RefractiveIndex::new(e).ok())
 }
 
-/// Absorption: none, very dark (20 per channel), from melanin (eumelanin and pheomelanin each
-/// in [0, 8]), or any colour with each channel in [0, 20].
+/// Melanin concentrations (eumelanin, pheomelanin), each 0 or 8 (the ends of hair's range:
+/// blonde to black) or uniform in [0, 8].
+pub fn melanin() -> impl Strategy<Value = (f64, f64)> + Clone {
+    let concentration = || with_hard_values(&[0.0, 8.0], 0.0..=8.0);
+    (concentration(), concentration())
+}
+
+/// Absorption: none, very dark (20 per channel), from [`melanin`], or any colour with each
+/// channel in [0, 20].
 pub fn absorption() -> impl Strategy<Value = Absorption> + Clone {
-    let melanin = (0.0..=8.0_f64, 0.0..=8.0_f64).prop_filter_map("valid melanin", |(e, p)| {
+    let melanin = melanin().prop_filter_map("valid melanin", |(e, p)| {
         Absorption::from_melanin(e, p).ok()
     });
     let colour = [0.0..=20.0_f64, 0.0..=20.0_f64, 0.0..=20.0_f64]
