@@ -1,5 +1,6 @@
 //! Throughput of the Chiang 2016 hair BCSDF: evaluation, sampling and pdf in f64 and f32
-//! (scalar) and eval/pdf batched over `wide::f32x8` and `wide::f32x16` lanes.
+//! (scalar) and eval/pdf batched over `wide::f32x8` and `wide::f32x16` lanes (eval also from
+//! a structure of arrays, `eval_batch_soa`, against the array of structures).
 //!
 //! Every benchmark processes the same 1024 deterministic samples per iteration and reports
 //! `Throughput::Elements(1024)`, so criterion's time divided by 1024 is the cost of one
@@ -22,8 +23,8 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use hairmath::bcsdf::{
-    eval_batch, par_eval_batch, pdf_batch, BatchLanes, BatchReal, Bcsdf, ChiangHair, Model, Query,
-    RandomNumbers, SampledBcsdf,
+    eval_batch, eval_batch_soa, par_eval_batch, pdf_batch, BatchLanes, BatchReal, Bcsdf,
+    ChiangHair, DirectionSlices, Model, Query, RandomNumbers, RgbSlices, SampledBcsdf,
 };
 use hairmath::geometry::V3;
 use hairmath::params::HairParams;
@@ -148,10 +149,34 @@ fn bench_eval(c: &mut Criterion) {
                 black_box(&mut out);
             })
         });
+        // The same samples as a structure of arrays (no transposition).
+        let component = |d: &[[f32; 3]], c: usize| -> Vec<f32> { d.iter().map(|w| w[c]).collect() };
+        let wi = [0, 1, 2].map(|c| component(&x.wi, c));
+        let wo = [0, 1, 2].map(|c| component(&x.wo, c));
+        let mut rgb = [vec![0.0_f32; N], vec![0.0_f32; N], vec![0.0_f32; N]];
+        g.bench_function(BenchmarkId::new("batch soa", name), |b| {
+            b.iter(|| {
+                let (wi, wo) = (soa(black_box(&wi)), soa(black_box(&wo)));
+                let [r, g, b] = &mut rgb;
+                let out = RgbSlices { r, g, b };
+                eval_batch_soa(black_box(&hair), wi, wo, black_box(&x.h), out)
+                    .expect("equal lengths");
+                black_box(&mut rgb);
+            })
+        });
     }
     batch::<wide::f32x8>(&mut g, "f32x8", &p, &x);
     batch::<wide::f32x16>(&mut g, "f32x16", &p, &x);
     g.finish();
+}
+
+/// Direction components as the slices of a structure-of-arrays batch.
+fn soa(d: &[Vec<f32>; 3]) -> DirectionSlices<'_> {
+    DirectionSlices {
+        x: &d[0],
+        y: &d[1],
+        z: &d[2],
+    }
 }
 
 fn bench_sample(c: &mut Criterion) {

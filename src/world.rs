@@ -286,7 +286,7 @@ fn world_batch<T>(
             block_wi[k] = wi[k].to_array();
             block_wo[k] = wo[k].to_array();
         }
-        check_samples(&block_wi[..n], &block_wo[..n], h).map_err(|e| offset_index(e, start))?;
+        check_samples(&block_wi[..n], &block_wo[..n], h).map_err(|e| e.shifted(start))?;
     }
     let outs = out.chunks_mut(WORLD_BLOCK);
     for ((_, ((tangent, wi), (wo, h))), out) in blocks(samples).zip(outs) {
@@ -319,32 +319,6 @@ fn blocks<'a>(
     let directions = chunks(samples.tangent).zip(chunks(samples.wi));
     let rest = chunks(samples.wo).zip(samples.h.chunks(WORLD_BLOCK));
     (0..).step_by(WORLD_BLOCK).zip(directions.zip(rest))
-}
-
-/// A block's error with the sample index of the whole batch.
-fn offset_index(error: BatchError, start: usize) -> BatchError {
-    match error {
-        BatchError::Direction {
-            index,
-            name,
-            x,
-            y,
-            z,
-            tolerance,
-        } => BatchError::Direction {
-            index: start + index,
-            name,
-            x,
-            y,
-            z,
-            tolerance,
-        },
-        BatchError::Offset { index, h } => BatchError::Offset {
-            index: start + index,
-            h,
-        },
-        other => other,
-    }
 }
 
 /// Whether a tangent has a frame: finite and non-zero.

@@ -141,6 +141,17 @@ pub enum BatchError {
         /// Components as given.
         z: f32,
     },
+    /// A component slice of a structure-of-arrays batch ([`eval_batch_soa`]) whose length is
+    /// not the offsets' (the number of samples).
+    #[error("batch slices must have equal lengths: {name} has {length}, h has {samples}")]
+    ComponentLength {
+        /// The slice: `wi.x`, `wi.y`, ..., `out.b`.
+        name: &'static str,
+        /// Its length.
+        length: usize,
+        /// The number of samples (the length of `h`).
+        samples: usize,
+    },
     /// An offset that is NaN (finite or infinite ones are clamped to [-1, 1]).
     #[error("sample {index}: h = {h} must be a number (offsets outside [-1, 1] are clamped)")]
     Offset {
@@ -149,6 +160,35 @@ pub enum BatchError {
         /// The offset as given.
         h: f32,
     },
+}
+
+impl BatchError {
+    /// The error of a check of the samples from `start` on, with the sample index of the whole
+    /// batch (an error that names no sample is unchanged).
+    pub(crate) fn shifted(self, start: usize) -> BatchError {
+        match self {
+            BatchError::Direction {
+                index,
+                name,
+                x,
+                y,
+                z,
+                tolerance,
+            } => BatchError::Direction {
+                index: start + index,
+                name,
+                x,
+                y,
+                z,
+                tolerance,
+            },
+            BatchError::Offset { index, h } => BatchError::Offset {
+                index: start + index,
+                h,
+            },
+            other => other,
+        }
+    }
 }
 
 /// Whether `w` is a unit vector within [`super::UNIT_TOLERANCE`] (false for non-finite
@@ -311,6 +351,153 @@ pub(crate) fn eval_checked<L: BatchLanes, M: Bcsdf<L>>(
             *slot = [rgb[0][k], rgb[1][k], rgb[2][k]];
         }
     });
+}
+
+/// Directions as a structure of arrays: sample `k` is `(x[k], y[k], z[k])` (local frame, as
+/// in [`Query`]).
+#[derive(Clone, Copy, Debug)]
+pub struct DirectionSlices<'a> {
+    /// The components along the tangent.
+    pub x: &'a [f32],
+    /// The second components.
+    pub y: &'a [f32],
+    /// The third components.
+    pub z: &'a [f32],
+}
+
+/// Per-channel outputs as a structure of arrays: sample `k`'s S is `(r[k], g[k], b[k])`.
+#[derive(Debug)]
+pub struct RgbSlices<'a> {
+    /// Red.
+    pub r: &'a mut [f32],
+    /// Green.
+    pub g: &'a mut [f32],
+    /// Blue.
+    pub b: &'a mut [f32],
+}
+
+/// [`eval_batch`] of samples stored as a structure of arrays, the layout of the lanes
+/// themselves: each chunk of `L::LANES` samples is loaded and stored contiguously, with no
+/// transposition. The values are [`eval_batch`]'s, bit for bit (the same lanes go through the
+/// same code). Every sample is checked first, as in [`eval_batch`].
+///
+/// # Errors
+/// [`BatchError::ComponentLength`] naming the first slice whose length is not `h.len()`;
+/// [`BatchError::Direction`] or [`BatchError::Offset`] naming the first bad sample; `out` is
+/// then untouched.
+///
+/// # Examples
+///
+/// ```
+/// use hairmath::bcsdf::{eval_batch_soa, BatchReal, ChiangHair, DirectionSlices, Model, RgbSlices};
+/// use hairmath::params::HairParams;
+///
+/// let lanes = ChiangHair::new(&HairParams::default()).instantiate::<BatchReal>();
+/// let n = 20;
+/// let wi = DirectionSlices { x: &vec![-0.6; n], y: &vec![0.8; n], z: &vec![0.0; n] };
+/// let wo = DirectionSlices { x: &vec![0.6; n], y: &vec![0.0; n], z: &vec![0.8; n] };
+/// let (mut r, mut g, mut b) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+/// let out = RgbSlices { r: &mut r, g: &mut g, b: &mut b };
+/// eval_batch_soa(&lanes, wi, wo, &vec![0.1; n], out)?;
+/// assert!(r.iter().all(|&s| s == r[0] && s > 0.0));
+/// # Ok::<(), hairmath::bcsdf::BatchError>(())
+/// ```
+pub fn eval_batch_soa<L: BatchLanes, M: Bcsdf<L>>(
+    model: &M,
+    wi: DirectionSlices<'_>,
+    wo: DirectionSlices<'_>,
+    h: &[f32],
+    out: RgbSlices<'_>,
+) -> Result<(), BatchError> {
+    let outputs = [
+        ("out.r", out.r.len()),
+        ("out.g", out.g.len()),
+        ("out.b", out.b.len()),
+    ];
+    check_components(&wi, &wo, h, &outputs)?;
+    check_soa_samples(&wi, &wo, h)?;
+    let len = h.len();
+    for start in (0..len).step_by(L::LANES) {
+        let lanes = |s: &[f32], fill: f32| soa_lanes::<L>(s, start, fill);
+        let direction = |d: &DirectionSlices| {
+            V3::new(
+                lanes(d.x, PAD_DIR[0]),
+                lanes(d.y, PAD_DIR[1]),
+                lanes(d.z, PAD_DIR[2]),
+            )
+        };
+        let value = model.eval(&Query::new(direction(&wi), direction(&wo), lanes(h, PAD_H)));
+        let end = (start + L::LANES).min(len);
+        for (channel, v) in [&mut *out.r, &mut *out.g, &mut *out.b]
+            .into_iter()
+            .zip(value)
+        {
+            v.store(&mut channel[start..end]);
+        }
+    }
+    Ok(())
+}
+
+/// `L::LANES` values of `s` from `start`, padded with `fill` past its end.
+#[inline(always)]
+fn soa_lanes<L: BatchLanes>(s: &[f32], start: usize, fill: f32) -> L {
+    match s.get(start..start + L::LANES) {
+        Some(chunk) => L::from_fn(|k| chunk[k]),
+        None => L::from_fn(|k| s.get(start + k).copied().unwrap_or(fill)),
+    }
+}
+
+/// [`BatchError::ComponentLength`] for the first component or output slice whose length is
+/// not `h.len()`.
+fn check_components(
+    wi: &DirectionSlices,
+    wo: &DirectionSlices,
+    h: &[f32],
+    outputs: &[(&'static str, usize)],
+) -> Result<(), BatchError> {
+    let inputs = [
+        ("wi.x", wi.x.len()),
+        ("wi.y", wi.y.len()),
+        ("wi.z", wi.z.len()),
+        ("wo.x", wo.x.len()),
+        ("wo.y", wo.y.len()),
+        ("wo.z", wo.z.len()),
+    ];
+    match inputs
+        .iter()
+        .chain(outputs)
+        .find(|(_, length)| *length != h.len())
+    {
+        Some(&(name, length)) => Err(BatchError::ComponentLength {
+            name,
+            length,
+            samples: h.len(),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// [`check_samples`] of a structure of arrays (lengths already checked): a branch-free pass
+/// first, as there, then the search for the first bad sample.
+fn check_soa_samples(
+    wi: &DirectionSlices,
+    wo: &DirectionSlices,
+    h: &[f32],
+) -> Result<(), BatchError> {
+    let n = h.len();
+    let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
+    let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
+    let sample = |k: usize| ([ix[k], iy[k], iz[k]], [ox[k], oy[k], oz[k]]);
+    let sample_ok = |k: usize| {
+        let (a, b) = sample(k);
+        is_unit(&a) & is_unit(&b) & !h[k].is_nan()
+    };
+    if (0..n).fold(true, |ok, k| ok & sample_ok(k)) {
+        return Ok(());
+    }
+    let k = (0..n).position(|k| !sample_ok(k)).unwrap_or(0);
+    let (a, b) = sample(k);
+    check_samples(&[a], &[b], &h[k..=k]).map_err(|e| e.shifted(k))
 }
 
 /// A model instantiated on the lanes of [`BatchReal`], behind a trait object: what a caller
@@ -671,6 +858,161 @@ mod tests {
 
     /// Every tail length 1..=33 gives the same values as evaluating the samples inside a full
     /// chunk, i.e. the padding never leaks into valid lanes.
+    /// The structure-of-arrays batch gives the array-of-structures batch's values bit for bit,
+    /// at every tail length and on the hard inputs, for both widths.
+    #[test]
+    fn structure_of_arrays_is_the_same_batch() {
+        soa_agrees::<f32x8>();
+        soa_agrees::<f32x16>();
+    }
+
+    fn soa_agrees<L: BatchLanes>() {
+        let hair = model().instantiate::<L>();
+        let (wi, wo, h) = inputs(300);
+        let component = |d: &[[f32; 3]], c: usize| -> Vec<f32> { d.iter().map(|w| w[c]).collect() };
+        let (wix, wiy, wiz) = (component(&wi, 0), component(&wi, 1), component(&wi, 2));
+        let (wox, woy, woz) = (component(&wo, 0), component(&wo, 1), component(&wo, 2));
+        for len in (0..=33).chain([wi.len()]) {
+            let mut aos = vec![[0.0; 3]; len];
+            eval_batch(&hair, &wi[..len], &wo[..len], &h[..len], &mut aos).unwrap();
+            let (mut r, mut g, mut b) = (
+                vec![f32::NAN; len],
+                vec![f32::NAN; len],
+                vec![f32::NAN; len],
+            );
+            eval_batch_soa(
+                &hair,
+                DirectionSlices {
+                    x: &wix[..len],
+                    y: &wiy[..len],
+                    z: &wiz[..len],
+                },
+                DirectionSlices {
+                    x: &wox[..len],
+                    y: &woy[..len],
+                    z: &woz[..len],
+                },
+                &h[..len],
+                RgbSlices {
+                    r: &mut r,
+                    g: &mut g,
+                    b: &mut b,
+                },
+            )
+            .unwrap();
+            for k in 0..len {
+                let soa = [r[k], g[k], b[k]];
+                assert_eq!(
+                    soa.map(f32::to_bits),
+                    aos[k].map(f32::to_bits),
+                    "length {len}, sample {k}"
+                );
+            }
+        }
+    }
+
+    /// Slices of other lengths and bad samples are typed errors naming the slice or the sample.
+    #[test]
+    fn structure_of_arrays_errors_name_the_slice_or_the_sample() {
+        let hair = model().instantiate::<f32x8>();
+        let ones = [1.0_f32; 20];
+        let zeros = [0.0_f32; 20];
+        let along = DirectionSlices {
+            x: &ones,
+            y: &zeros,
+            z: &zeros,
+        };
+        let (mut r, mut g, mut b) = ([0.0; 20], [0.0; 20], [0.0; 20]);
+        let short = DirectionSlices {
+            y: &zeros[..19],
+            ..along
+        };
+        let error = eval_batch_soa(
+            &hair,
+            along,
+            short,
+            &zeros,
+            RgbSlices {
+                r: &mut r,
+                g: &mut g,
+                b: &mut b,
+            },
+        );
+        assert_eq!(
+            error,
+            Err(BatchError::ComponentLength {
+                name: "wo.y",
+                length: 19,
+                samples: 20
+            })
+        );
+        let error = eval_batch_soa(
+            &hair,
+            along,
+            along,
+            &zeros,
+            RgbSlices {
+                r: &mut r,
+                g: &mut g[..3],
+                b: &mut b,
+            },
+        );
+        assert!(matches!(
+            error,
+            Err(BatchError::ComponentLength {
+                name: "out.g",
+                length: 3,
+                ..
+            })
+        ));
+        let mut tilted = ones;
+        tilted[13] = 0.5;
+        let bad = DirectionSlices {
+            x: &tilted,
+            ..along
+        };
+        let error = eval_batch_soa(
+            &hair,
+            along,
+            bad,
+            &zeros,
+            RgbSlices {
+                r: &mut r,
+                g: &mut g,
+                b: &mut b,
+            },
+        );
+        assert!(
+            matches!(
+                error,
+                Err(BatchError::Direction {
+                    index: 13,
+                    name: "wo",
+                    ..
+                })
+            ),
+            "{error:?}"
+        );
+        let mut offsets = zeros;
+        offsets[17] = f32::NAN;
+        let error = eval_batch_soa(
+            &hair,
+            along,
+            along,
+            &offsets,
+            RgbSlices {
+                r: &mut r,
+                g: &mut g,
+                b: &mut b,
+            },
+        );
+        assert!(
+            matches!(error, Err(BatchError::Offset { index: 17, .. })),
+            "{error:?}"
+        );
+        assert!(r.iter().all(|&v| v == 0.0), "out untouched on error");
+    }
+
     #[test]
     fn tails_of_every_length_agree_with_full_chunks() {
         tails_agree::<f32x8>();

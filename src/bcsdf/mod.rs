@@ -24,7 +24,8 @@ mod varying;
 
 pub(crate) use batch::{check as check_lengths, check_samples, eval_checked, pdf_checked};
 pub use batch::{
-    eval_batch, pdf_batch, BatchError, BatchEval, BatchLanes, BatchLengthError, BatchReal, LANES,
+    eval_batch, eval_batch_soa, pdf_batch, BatchError, BatchEval, BatchLanes, BatchLengthError,
+    BatchReal, DirectionSlices, RgbSlices, LANES,
 };
 #[cfg(feature = "parallel")]
 pub use batch::{par_eval_batch, par_pdf_batch, PARALLEL_CHUNK};
