@@ -336,7 +336,7 @@ pub fn example_shaders() -> Result<Vec<ModelShader>, ModelShaderError> {
         .collect()
 }
 
-/// The contents of the repository's `shaders/` folder ([module docs](self)), which a test
+/// The contents of the repository's `shaders/` folder (the [`crate::shader`] module documentation), which a test
 /// compares with the folder; `hairmath shader --committed shaders` writes it.
 ///
 /// # Errors

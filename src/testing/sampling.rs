@@ -88,7 +88,7 @@ pub struct WeightReport {
 
 impl WeightReport {
     /// Whether there was a sample and every sample's weight agrees within `tolerance`
-    /// (relative, the measure of [`super::compare`]).
+    /// (relative, the measure of [`mod@super::compare`]).
     pub fn passes(&self, tolerance: f64) -> bool {
         self.comparison.rows > 0 && self.comparison.passes(tolerance)
     }
