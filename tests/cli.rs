@@ -5,8 +5,10 @@ use hairmath::bcsdf::{Bcsdf, ChiangFarField, ChiangHair, FarFieldRule, Query, Re
 use hairmath::geometry::V3;
 use hairmath::params::{HairParams, HairValues, RefractiveIndex};
 use hairmath::sh::{gaunt_complex, gaunt_real};
-use std::io::Write;
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
+
+mod piped;
+use piped::hairmath_piped;
 
 const HEADER: &str = "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,h";
 
@@ -22,28 +24,12 @@ const FLAGS: [&str; 8] = [
     "0.5,0.8,1.4",
 ];
 
-/// Runs `hairmath` with `args` and `stdin`.
-fn hairmath(args: &[&str], stdin: &str) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_hairmath"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary starts");
-    let mut input = child.stdin.take().expect("stdin is piped");
-    // The tool may exit before reading everything (argument errors): ignore a broken pipe.
-    let _ = input.write_all(stdin.as_bytes());
-    drop(input);
-    child.wait_with_output().expect("the binary runs")
-}
-
 /// `hairmath eval` with the standard flags plus `extra`.
 fn eval(extra: &[&str], stdin: &str) -> Output {
     let mut args = vec!["eval"];
     args.extend(FLAGS);
     args.extend(extra);
-    hairmath(&args, stdin)
+    hairmath_piped(&args, stdin)
 }
 
 fn stdout(o: &Output) -> String {
@@ -160,7 +146,7 @@ fn melanin_and_color_are_alternatives() {
     let base = ["eval", "--beta-m", "0.3", "--beta-n", "0.3"];
     for flag in [["--melanin", "1.3,0.2"], ["--color", "0.5,0.3,0.1"]] {
         let args: Vec<&str> = base.iter().chain(&flag).copied().collect();
-        let o = hairmath(&args, &input);
+        let o = hairmath_piped(&args, &input);
         assert!(o.status.success(), "{flag:?}: {}", stderr(&o));
         assert_eq!(stdout(&o).lines().count(), 2);
     }
@@ -168,10 +154,10 @@ fn melanin_and_color_are_alternatives() {
 
 #[test]
 fn missing_flag_is_a_clap_error() {
-    let o = hairmath(&["eval", "--beta-n", "0.3", "--sigma-a", "0,0,0"], "");
+    let o = hairmath_piped(&["eval", "--beta-n", "0.3", "--sigma-a", "0,0,0"], "");
     assert!(!o.status.success());
     assert!(stderr(&o).contains("--beta-m"), "{}", stderr(&o));
-    let o = hairmath(&["eval", "--beta-m", "0.3", "--beta-n", "0.3"], "");
+    let o = hairmath_piped(&["eval", "--beta-m", "0.3", "--beta-n", "0.3"], "");
     assert!(!o.status.success());
     assert!(stderr(&o).contains("--sigma-a"), "{}", stderr(&o));
 }
@@ -228,7 +214,7 @@ fn missing_column_is_reported_on_line_1() {
 
 #[test]
 fn bad_parameters_are_rejected() {
-    let o = hairmath(
+    let o = hairmath_piped(
         &[
             "eval",
             "--beta-m",
@@ -243,7 +229,7 @@ fn bad_parameters_are_rejected() {
     assert_fails_with(&o, &["beta_m = 0", "[1e-16, 1]"]);
     let o = eval(&["--eta", "0.9"], &format!("{HEADER}\n"));
     assert_fails_with(&o, &["eta = 0.9"]);
-    let o = hairmath(
+    let o = hairmath_piped(
         &[
             "eval",
             "--beta-m",
@@ -260,7 +246,7 @@ fn bad_parameters_are_rejected() {
 
 #[test]
 fn report_quick_prints_the_tables() {
-    let o = hairmath(&["report", "--quick"], "");
+    let o = hairmath_piped(&["report", "--quick"], "");
     assert!(o.status.success(), "stderr: {}", stderr(&o));
     let out = stdout(&o);
     for needle in [
@@ -400,7 +386,7 @@ fn values(out: &str) -> Vec<f64> {
 fn wigner3j_known_values_and_selection_rules() {
     let input = "j1,j2,j3,m1,m2,m3\n1,1,0,0,0,0\n1/2,1/2,1,0.5,-1/2,0\n1,1,5,0,0,0\n\
                  2,2,2,1,1,1\n";
-    let o = hairmath(&["wigner3j"], input);
+    let o = hairmath_piped(&["wigner3j"], input);
     assert!(o.status.success(), "stderr: {}", stderr(&o));
     let out = stdout(&o);
     assert_eq!(out.lines().next(), Some("j1,j2,j3,m1,m2,m3,value"));
@@ -416,26 +402,26 @@ fn wigner3j_known_values_and_selection_rules() {
 
 #[test]
 fn wigner3j_errors_name_the_line() {
-    let o = hairmath(
+    let o = hairmath_piped(
         &["wigner3j"],
         "j1,j2,j3,m1,m2,m3\n1,1,0,0,0,0\n1,1,x,0,0,0\n",
     );
     assert_fails_with(&o, &["line 3", "column j3", "\"x\""]);
     assert_eq!(values(&stdout(&o)), [-0.5773502691896257]);
     // An integer j with a half-integer m.
-    let o = hairmath(&["wigner3j"], "j1,j2,j3,m1,m2,m3\n1,1,1,1/2,-1/2,0\n");
+    let o = hairmath_piped(&["wigner3j"], "j1,j2,j3,m1,m2,m3\n1,1,1,1/2,-1/2,0\n");
     assert_fails_with(
         &o,
         &["line 2", "(1 1 1; 1/2 -1/2 0)", "m1 = 0.5", "integer"],
     );
-    let o = hairmath(&["wigner3j"], "j1,j2,j3,m1,m2,m3\n1/2,1,1,1/2,0,0\n");
+    let o = hairmath_piped(&["wigner3j"], "j1,j2,j3,m1,m2,m3\n1/2,1,1,1/2,0,0\n");
     assert_fails_with(&o, &["line 2", "j1 + j2 + j3 = 2.5"]);
-    let o = hairmath(&["wigner3j"], "j1,j2,j3,m1,m2,m3\n1,1,1,1.25,0,0\n");
+    let o = hairmath_piped(&["wigner3j"], "j1,j2,j3,m1,m2,m3\n1,1,1,1.25,0,0\n");
     assert_fails_with(
         &o,
         &["line 2", "column m1", "not an integer or half-integer"],
     );
-    let o = hairmath(&["wigner3j"], "j1,j2,j3,m1,m2\n");
+    let o = hairmath_piped(&["wigner3j"], "j1,j2,j3,m1,m2\n");
     assert_fails_with(&o, &["line 1", "m3"]);
 }
 
@@ -452,7 +438,7 @@ fn gaunt_real_and_complex_match_the_library() {
         input += &format!("{k},{},{},{},{},{},{}\n", r.0, r.1, r.2, r.3, r.4, r.5);
     }
     for real in [false, true] {
-        let o = hairmath(
+        let o = hairmath_piped(
             if real {
                 &["gaunt", "--real"]
             } else {
@@ -476,7 +462,7 @@ fn gaunt_real_and_complex_match_the_library() {
 
 #[test]
 fn gaunt_malformed_row_is_reported() {
-    let o = hairmath(
+    let o = hairmath_piped(
         &["gaunt"],
         "l1,m1,l2,m2,l3,m3\n1,0,1,0,0,0\n1/2,0,1,0,0,0\n",
     );
@@ -485,13 +471,13 @@ fn gaunt_malformed_row_is_reported() {
         &["line 3", "column l1", "\"1/2\"", "non-negative integer"],
     );
     assert_eq!(stdout(&o).lines().count(), 2);
-    let o = hairmath(&["gaunt", "--real"], "l1,m1,l2,m2,l3,m3\n1,0,1,0\n");
+    let o = hairmath_piped(&["gaunt", "--real"], "l1,m1,l2,m2,l3,m3\n1,0,1,0\n");
     assert_fails_with(&o, &["line 2", "expected 6 fields", "found 4"]);
 }
 
 #[test]
 fn fit_json_has_the_documented_keys_and_the_library_values() {
-    let o = hairmath(&["fit", "--json"], "");
+    let o = hairmath_piped(&["fit", "--json"], "");
     assert!(o.status.success(), "{}", stderr(&o));
     let rows: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("valid JSON");
     let rows = rows.as_array().expect("an array");
@@ -529,7 +515,7 @@ fn fit_json_has_the_documented_keys_and_the_library_values() {
 
 #[test]
 fn fit_table_and_bad_eta() {
-    let o = hairmath(&["fit"], "");
+    let o = hairmath_piped(&["fit"], "");
     assert!(o.status.success(), "{}", stderr(&o));
     let out = stdout(&o);
     assert!(
@@ -537,9 +523,9 @@ fn fit_table_and_bad_eta() {
         "{out}"
     );
     assert!(out.contains("gerard.hg_g.literal.beta_10deg"));
-    let o = hairmath(&["fit", "--eta", "0.9"], "");
+    let o = hairmath_piped(&["fit", "--eta", "0.9"], "");
     assert_fails_with(&o, &["eta", "(1, 3]"]);
-    let o = hairmath(&["fit", "--details"], "");
+    let o = hairmath_piped(&["fit", "--details"], "");
     assert!(o.status.success(), "{}", stderr(&o));
     let out = stdout(&o);
     for heading in [
@@ -583,7 +569,7 @@ fn an_invalid_value_gives_the_same_message_in_every_subcommand() {
     ];
     for (args, message) in cases {
         let args: Vec<&str> = args.split_whitespace().collect();
-        let o = hairmath(&args, &format!("{HEADER}\n"));
+        let o = hairmath_piped(&args, &format!("{HEADER}\n"));
         assert_fails_with(&o, &[message]);
     }
     let _ = std::fs::remove_dir_all(dir);
@@ -591,7 +577,7 @@ fn an_invalid_value_gives_the_same_message_in_every_subcommand() {
 
 #[test]
 fn flags_of_other_models_and_missing_flags_are_named() {
-    let o = hairmath(
+    let o = hairmath_piped(
         &[
             "eval",
             "--model",
@@ -608,7 +594,7 @@ fn flags_of_other_models_and_missing_flags_are_named() {
         // --beta-n also belongs to karis-refit (its colour inversion).
         &["--beta-m and --alpha-deg apply only to --model chiang, chiang-far"],
     );
-    let o = hairmath(
+    let o = hairmath_piped(
         &[
             "eval",
             "--model",
@@ -621,7 +607,7 @@ fn flags_of_other_models_and_missing_flags_are_named() {
         "",
     );
     assert_fails_with(&o, &["--model chiang requires --beta-n"]);
-    let o = hairmath(&["eval", "--model", "nonsense"], "");
+    let o = hairmath_piped(&["eval", "--model", "nonsense"], "");
     assert!(!o.status.success());
     assert!(stderr(&o).contains("chiang-far"), "{}", stderr(&o));
 }
@@ -651,5 +637,5 @@ fn marschner_matches_the_library() {
 fn eval_model(model: &str, flags: &[&str], stdin: &str) -> Output {
     let mut args = vec!["eval", "--model", model];
     args.extend(flags);
-    hairmath(&args, stdin)
+    hairmath_piped(&args, stdin)
 }

@@ -8,25 +8,9 @@ use hairmath::bcsdf::{Bcsdf, ChiangHair};
 use hairmath::glam::DVec3;
 use hairmath::params::HairParams;
 use hairmath::testing::{Convention, ConventionQuery};
-use std::io::Write;
-use std::process::{Command, Output, Stdio};
 
-fn run(args: &[&str], stdin: &str) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_hairmath"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary runs");
-    child
-        .stdin
-        .take()
-        .expect("stdin")
-        .write_all(stdin.as_bytes())
-        .expect("written");
-    child.wait_with_output().expect("finished")
-}
+mod piped;
+use piped::hairmath_piped;
 
 /// The CSV of `cases` with a renderer's f appended: hairmath's S converted to `convention`'s
 /// f, times `scale` (1 for a correct renderer).
@@ -57,7 +41,7 @@ fn render(cases: &str, convention: Convention, scale: impl Fn(&ConventionQuery) 
 #[test]
 fn a_correct_renderer_passes_in_every_convention() {
     for (convention, name) in Convention::ALL {
-        let cases = run(&["cases", "--count", "300", "--convention", name], "");
+        let cases = hairmath_piped(&["cases", "--count", "300", "--convention", name], "");
         assert!(cases.status.success());
         let cases = String::from_utf8(cases.stdout).expect("UTF-8");
         assert_eq!(cases.lines().count(), 1 + 243 + 300, "{name}");
@@ -68,7 +52,7 @@ fn a_correct_renderer_passes_in_every_convention() {
             "{name}: {header}"
         );
         let values = render(&cases, convention, |_| 1.0);
-        let check = run(&["check", "--convention", name, "--json"], &values);
+        let check = hairmath_piped(&["check", "--convention", name, "--json"], &values);
         let stdout = String::from_utf8_lossy(&check.stdout);
         assert!(check.status.success(), "{name}: {stdout}");
         let json: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
@@ -84,13 +68,13 @@ fn a_correct_renderer_passes_in_every_convention() {
 
 #[test]
 fn a_renderer_that_forgets_pbrts_cosine_fails_with_status_1() {
-    let cases = run(&["cases", "--count", "200", "--convention", "pbrt"], "");
+    let cases = hairmath_piped(&["cases", "--count", "200", "--convention", "pbrt"], "");
     let cases = String::from_utf8(cases.stdout).expect("UTF-8");
     // pbrt's f is S / |wi.z|; this renderer returns S.
     let values = render(&cases, Convention::Pbrt, |q| {
         q.wi.z.abs().max(f64::MIN_POSITIVE)
     });
-    let check = run(&["check", "--convention", "pbrt", "--worst", "2"], &values);
+    let check = hairmath_piped(&["check", "--convention", "pbrt", "--worst", "2"], &values);
     assert_eq!(check.status.code(), Some(1));
     let stdout = String::from_utf8_lossy(&check.stdout);
     assert!(
@@ -115,7 +99,7 @@ fn bad_input_is_a_typed_error() {
         ),
     ];
     for (input, expected) in bad {
-        let check = run(&["check"], input);
+        let check = hairmath_piped(&["check"], input);
         assert_eq!(check.status.code(), Some(2), "{input}");
         let stderr = String::from_utf8_lossy(&check.stderr);
         assert!(stderr.contains(expected), "{input}: {stderr}");
@@ -123,11 +107,11 @@ fn bad_input_is_a_typed_error() {
     // Directions along the normal (Mitsuba's +Y is the tangent, where only finiteness is
     // checked).
     let mitsuba_h = "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,h,f_r,f_g,f_b\n0,0,1,0,0,1,0,1,1,1\n";
-    let check = run(&["check", "--convention", "mitsuba"], mitsuba_h);
+    let check = hairmath_piped(&["check", "--convention", "mitsuba"], mitsuba_h);
     // Mitsuba's columns have no h: the extra column passes through unread.
     assert_eq!(check.status.code(), Some(1));
-    let negative = run(&["check", "--tolerance", "-1"], "");
+    let negative = hairmath_piped(&["check", "--tolerance", "-1"], "");
     assert_eq!(negative.status.code(), Some(2));
-    let too_many = run(&["cases", "--count", "2000000"], "");
+    let too_many = hairmath_piped(&["cases", "--count", "2000000"], "");
     assert_eq!(too_many.status.code(), Some(2));
 }
