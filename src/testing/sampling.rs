@@ -113,17 +113,6 @@ impl fmt::Display for WeightReport {
     }
 }
 
-/// The estimator weight of S and a density (0 where the density is 0), as
-/// [`HairSample::weight`].
-fn weight_of(value: [f64; 3], pdf: f64) -> [f64; 3] {
-    HairSample {
-        wi: V3::new(0.0, 0.0, 0.0),
-        value,
-        pdf,
-    }
-    .weight()
-}
-
 /// Draws `settings.samples_per_view` samples at each view and compares each sample's weight
 /// `value / pdf` with `S(wi) / pdf(wi)` from the model's [`Bcsdf::eval`](crate::bcsdf::Bcsdf)
 /// and [`SampledBcsdf::pdf`] at the direction it returned. A BSDF given as closures goes
@@ -139,7 +128,13 @@ pub fn sample_weights<M: SampledBcsdf<f64> + ?Sized>(
             let u = random_numbers(&mut rng);
             let sample = model.sample(view.wo, view.h, u);
             let query = Query::new(sample.wi, view.wo, view.h);
-            let expected = weight_of(model.eval(&query), model.pdf(&query));
+            // The sample the model's own S and pdf give at the sampled direction.
+            let expected = HairSample {
+                wi: sample.wi,
+                value: model.eval(&query),
+                pdf: model.pdf(&query),
+            }
+            .weight();
             queries.push(query);
             values.push((expected, sample.weight()));
             numbers.push(u);
@@ -381,8 +376,10 @@ struct Pearson {
     worst: Option<usize>,
 }
 
-/// Pearson's test of `observed` against `expected` counts, bins expecting fewer than
-/// [`MIN_EXPECTED`] pooled into one.
+/// Pearson's test of `observed` against `expected` counts (Pearson 1900: the statistic
+/// `sum (o - e)^2 / e` follows the chi-square distribution with bins - 1 degrees of freedom for
+/// large counts), bins expecting fewer than [`MIN_EXPECTED`] pooled into one (Cochran 1954's
+/// rule of about five per bin). The p-value is the distribution's survival function (statrs).
 fn pearson(observed: &[f64], expected: &[f64]) -> Pearson {
     let term = |o: f64, e: f64| (o - e) * (o - e) / e;
     let (mut statistic, mut bins, mut worst) = (0.0, 0_usize, None::<(usize, f64)>);

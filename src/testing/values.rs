@@ -197,7 +197,8 @@ where
     F: Fn(&HairParams) -> M,
 {
     search(
-        |params, query, _| s_outputs(make(params).eval(query)).to_vec(),
+        make,
+        |model: &M, query, _| s_outputs(model.eval(query)).to_vec(),
         false,
         settings,
     )
@@ -211,8 +212,8 @@ where
     F: Fn(&HairParams) -> M,
 {
     search(
-        |params, query, u| {
-            let model = make(params);
+        make,
+        |model: &M, query, u| {
             let mut outputs = s_outputs(model.eval(query)).to_vec();
             outputs.push(non_negative("pdf", model.pdf(query)));
             let sample = model.sample(query.wo, query.h, u);
@@ -233,15 +234,17 @@ where
     )
 }
 
-/// The hard cases, then proptest over (parameters, query, random numbers): the first output
-/// not allowed (shrunk), or none, and the lowest S.
-fn search<O>(outputs: O, sampled: bool, settings: &ValueSettings) -> ValueReport
+/// The hard cases (each hard parameter set's model built once), then proptest over
+/// (parameters, query, random numbers): the first output not allowed (shrunk), or none, and
+/// the lowest S.
+fn search<M, F, O>(make: F, outputs: O, sampled: bool, settings: &ValueSettings) -> ValueReport
 where
-    O: Fn(&HairParams, &Query<f64>, RandomNumbers<f64>) -> Vec<Output>,
+    F: Fn(&HairParams) -> M,
+    O: Fn(&M, &Query<f64>, RandomNumbers<f64>) -> Vec<Output>,
 {
     let evaluated = Cell::new(0_usize);
     let lowest = Cell::new(None::<ValueCase>);
-    let check = |params: &HairParams, query: &Query<f64>, u: RandomNumbers<f64>| {
+    let check = |model: &M, params: &HairParams, query: &Query<f64>, u: RandomNumbers<f64>| {
         evaluated.set(evaluated.get() + 1);
         let case = |output: Output| ValueCase {
             params: *params,
@@ -249,7 +252,7 @@ where
             numbers: sampled.then_some(u),
             output,
         };
-        let all = outputs(params, query, u);
+        let all = outputs(model, query, u);
         for output in all.iter().filter(|o| o.ok && o.name.starts_with("S_")) {
             if lowest.get().is_none_or(|l| output.value < l.output.value) {
                 lowest.set(Some(case(*output)));
@@ -263,13 +266,20 @@ where
         cone: 0.5,
         offset: 0.5,
     };
+    let queries = hard_queries();
     let hard = hard_params().into_iter().find_map(|params| {
-        hard_queries()
+        let model = make(&params);
+        queries
             .iter()
-            .find_map(|query| check(&params, query, middle))
+            .find_map(|query| check(&model, &params, query, middle))
     });
     let at_hard_case = hard.is_some();
-    let failure = hard.or_else(|| proptest_search(&check, settings));
+    let failure = hard.or_else(|| {
+        proptest_search(
+            &|params: &HairParams, query: &Query<f64>, u| check(&make(params), params, query, u),
+            settings,
+        )
+    });
     ValueReport {
         evaluated: evaluated.get(),
         failure,
