@@ -37,7 +37,7 @@ use crate::error::ParamError;
 use crate::geometry::{
     azimuth_between, local_direction, local_fibre_angles, local_sin_cos_theta, V3,
 };
-use crate::lobe::{deon_lobe_sample_cos_theta, DeonLobe};
+use crate::lobe::{deon_lobe_sample_cos_theta, BesselForm, DeonLobe};
 use crate::params::HairParams;
 use crate::real::{pi, powi, safe_sqrt, wrap_angle, Real, ShaderFunction, INV_TWO_PI};
 
@@ -442,12 +442,21 @@ impl<R: Real, O> ChiangHair<R, O> {
     /// M_p for p = 0..3 with the tilt of each lobe.
     #[inline(always)]
     pub(crate) fn longitudinal(&self, angles: &PairAngles<R>) -> [R; LOBES_WITH_RESIDUAL] {
-        core::array::from_fn(|p| {
-            let (sin_op, cos_op) = self.tilted(p, angles.out.sin_o, angles.out.cos_o);
-            self.lobe(p)
-                .0
-                .eval(angles.sin_i, angles.cos_i, sin_op, cos_op)
-        })
+        core::array::from_fn(|p| self.longitudinal_lobe(p, BesselForm::Full, angles))
+    }
+
+    /// M_p of lobe `p` with its tilt, its Bessel function by `form`.
+    #[inline(always)]
+    pub(crate) fn longitudinal_lobe(
+        &self,
+        p: usize,
+        form: BesselForm,
+        angles: &PairAngles<R>,
+    ) -> R {
+        let (sin_op, cos_op) = self.tilted(p, angles.out.sin_o, angles.out.cos_o);
+        self.lobe(p)
+            .0
+            .eval_with(form, angles.sin_i, angles.cos_i, sin_op, cos_op)
     }
 
     /// The azimuthal factors at `at`'s offset (clamped to [-1, 1]) and relative azimuth

@@ -7,7 +7,7 @@ mod deon;
 mod gaussian;
 mod henyey_greenstein;
 
-pub use bessel::{i0, i0e_split, log_i0, log_i0e};
+pub use bessel::{i0, i0e_split, i0e_split_reduced, log_i0, log_i0e, BesselForm};
 pub use deon::{deon_lobe, deon_lobe_sample_cos_theta, DeonLobe};
 pub use gaussian::gaussian_lobe;
 pub use henyey_greenstein::{hg_circle_factor, hg_gerard_printed, HenyeyGreenstein};

@@ -17,6 +17,9 @@
 //!   (eq. 7) and tilts `-2 alpha`, `alpha`, `4 alpha` (pbrt-v4), exactly Chiang's M
 //!   ([`crate::lobe::DeonLobe`]; its Bessel function in `f32` is Abramowitz and Stegun's
 //!   polynomial form).
+//! - [`Longitudinal::DeonReduced`]: the same lobe with hairmath's reduced Bessel function
+//!   ([`crate::lobe::i0e_split_reduced`]: two cubics, relative error at most 1.49e-4 in
+//!   every precision, 8 multiply-adds fewer than the single-precision form).
 //! - [`Longitudinal::SineGaussian`]: Karis 2016's unit-area Gaussian in the sum of sines,
 //!   `g(B_p; sin theta_i + sin theta_o - c_p)` with `B_R = B`, `B_TT = B/2`, `B_TRT = 2B`,
 //!   `B = sqrt(v coth(1/v) - v^2)` (the R lobe's standard deviation in `sin theta_i` at normal
@@ -91,7 +94,7 @@ use crate::bcsdf::{
     HAIR_INPUTS, HAIR_VARYING,
 };
 use crate::geometry::local_fibre_angles;
-use crate::lobe::{gaussian_lobe, hg_circle_factor};
+use crate::lobe::{gaussian_lobe, hg_circle_factor, BesselForm};
 use crate::lut::{bake, FarFieldN, SharedTable, Table, TableMeta};
 use crate::params::{AzimuthalRoughness, HairParams, RefractiveIndex};
 use crate::real::{safe_sqrt, NamedConstant, Real};
@@ -133,6 +136,8 @@ impl Constants {
 pub enum Longitudinal {
     /// d'Eon's lobe, Chiang's M.
     Deon,
+    /// d'Eon's lobe with the reduced Bessel function.
+    DeonReduced,
     /// Karis' Gaussian in the sum of sines.
     SineGaussian,
     /// Marschner's Gaussian in theta_h with his cosine conversion.
@@ -412,10 +417,11 @@ impl Composition {
 }
 
 impl Longitudinal {
-    /// `deon`, `sine_gaussian` or `theta_h_gaussian`.
+    /// `deon`, `deon_reduced`, `sine_gaussian`, `theta_h_gaussian` or `henyey_greenstein`.
     pub fn name(self) -> &'static str {
         match self {
             Longitudinal::Deon => "deon",
+            Longitudinal::DeonReduced => "deon_reduced",
             Longitudinal::SineGaussian => "sine_gaussian",
             Longitudinal::ThetaHGaussian => "theta_h_gaussian",
             Longitudinal::HenyeyGreenstein => "henyey_greenstein",
@@ -471,6 +477,7 @@ impl LobeFactors {
     pub fn describe(&self) -> String {
         let m = match self.longitudinal {
             Longitudinal::Deon => "d'Eon",
+            Longitudinal::DeonReduced => "d'Eon (reduced I0)",
             Longitudinal::SineGaussian => "sine Gaussian",
             Longitudinal::ThetaHGaussian => "theta_h Gaussian",
             Longitudinal::HenyeyGreenstein => "Henyey-Greenstein",
@@ -945,17 +952,21 @@ impl<R: Real> ComposedHair<R> {
         ChiangFarField::with_offsets(self.uniforms.chiang(), self.nodes.clone())
     }
 
-    /// `lobe`'s longitudinal factor M; `deon` holds d'Eon's lobes of the four paths.
+    /// `lobe`'s longitudinal factor M; `deon` holds d'Eon's lobes of the four paths, of
+    /// `chiang`.
     fn longitudinal(
         &self,
         lobe: ComposedLobe,
         m: Longitudinal,
         a: &ComposedAngles<R>,
-        deon: &[R; 4],
+        (chiang, deon): (&ChiangFarField<R>, &[R; 4]),
     ) -> R {
         let u = &self.uniforms;
         match m {
             Longitudinal::Deon => deon[lobe.p()],
+            Longitudinal::DeonReduced => {
+                chiang.longitudinal_lobe(lobe.p(), BesselForm::Reduced, &a.pair)
+            }
             Longitudinal::SineGaussian => {
                 let (width, centre) = u.sine_gaussian(lobe);
                 gaussian_lobe(width, a.sum_of_sines - centre)
@@ -1115,7 +1126,7 @@ impl<R: Real> ComposedHair<R> {
         let mut lobes = zero;
         for lobe in ComposedLobe::ALL {
             if let Some(f) = self.composition.lobe(lobe) {
-                let m = self.longitudinal(lobe, f.longitudinal, &a, &deon);
+                let m = self.longitudinal(lobe, f.longitudinal, &a, (&chiang, &deon));
                 let n = self.azimuthal(lobe, f.azimuthal, &a, &far, &table);
                 lobes[lobe.p()] = n.map(|x| (m * x).label(LOBE_LABELS[lobe.p()]));
             }

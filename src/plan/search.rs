@@ -287,6 +287,7 @@ fn slot_options(far_field_nodes: &[usize], with_tables: bool) -> [Vec<LobeOption
     let dropped = plain(None);
     let ms = [
         Longitudinal::Deon,
+        Longitudinal::DeonReduced,
         Longitudinal::SineGaussian,
         Longitudinal::ThetaHGaussian,
         Longitudinal::HenyeyGreenstein,

@@ -34,7 +34,7 @@ use hairmath::lobe::{
     deon_lobe, deon_lobe_sample_cos_theta, gaussian_lobe, hg_circle_factor, hg_gerard_printed,
     DeonLobe, HenyeyGreenstein,
 };
-use hairmath::lobe::{i0, i0e_split, log_i0, log_i0e};
+use hairmath::lobe::{i0, i0e_split, i0e_split_reduced, log_i0, log_i0e, BesselForm};
 use hairmath::lut::axis_cell;
 use hairmath::params::{HairParams, HairValues};
 use hairmath::real::{horner, pi, safe_asin, safe_sqrt, trace, wrap_angle, Graph, Real, Traced};
@@ -803,16 +803,26 @@ traced_tests! {
         }
     }
 
-    bessel ["i0e_split", "log_i0e", "log_i0", "i0"] {
+    bessel ["i0e_split", "i0e_split_reduced", "BesselForm::i0e_split", "log_i0e", "log_i0", "i0"] {
         case!("i0e_split", scalars(&[BESSEL_X]), |x| of_pair(i0e_split(x[0])));
+        case!("i0e_split_reduced", scalars(&[BESSEL_X]), |x| of_pair(i0e_split_reduced(x[0])));
+        for form in [BesselForm::Full, BesselForm::Reduced] {
+            case!(format!("{form:?}.i0e_split"), scalars(&[BESSEL_X]), |x| {
+                of_pair(form.i0e_split(x[0]))
+            });
+        }
         case!("log_i0e", scalars(&[BESSEL_X]), |x| vec![log_i0e(x[0]), log_i0(x[0])]);
         case!("i0", scalars(&[I0_X]), |x| vec![i0(x[0])]);
     }
-    lobe_deon ["deon_lobe", "DeonLobe::new", "DeonLobe::eval"] {
+    lobe_deon ["deon_lobe", "DeonLobe::new", "DeonLobe::eval", "DeonLobe::eval_with"] {
         let inputs = rows(|g| [&[g.pick(&VARIANCE)][..], &g.sin_cos(), &g.sin_cos()].concat());
-        case!("deon_lobe", inputs, |x| {
+        case!("deon_lobe", inputs.clone(), |x| {
             let lobe = DeonLobe::new(x[0]);
             vec![deon_lobe(x[0], x[1], x[2], x[3], x[4]), lobe.eval(x[1], x[2], x[3], x[4])]
+        });
+        case!("deon_lobe_reduced", inputs, |x| {
+            let lobe = DeonLobe::new(x[0]);
+            vec![lobe.eval_with(BesselForm::Reduced, x[1], x[2], x[3], x[4])]
         });
     }
     lobe_deon_sample ["deon_lobe_sample_cos_theta"] {
