@@ -128,6 +128,12 @@ fn assert_approximations(json: &Value) {
         }
         let options = scene["options"].as_array().unwrap();
         assert!(options.len() >= 8, "{name}");
+        // The example scenes fix eta and the melanins: Gerard's and Nguyen and Donnelly's
+        // tables are offered.
+        assert!(
+            options.iter().any(|o| !o["marschner_table"].is_null()),
+            "{name}"
+        );
         for o in options {
             assert_keys(
                 o,
@@ -137,12 +143,16 @@ fn assert_approximations(json: &Value) {
                     "kept",
                     "far_field_nodes",
                     "table",
+                    "marschner_table",
                     "error",
                     "cost",
                 ],
             );
             if !o["table"].is_null() {
                 assert_keys(&o["table"], &["phi", "theta_o", "beta_n"]);
+            }
+            if !o["marschner_table"].is_null() {
+                assert_keys(&o["marschner_table"], &["phi", "theta_d"]);
             }
         }
     }

@@ -10,10 +10,11 @@ use hairmath::bcsdf::{
 };
 use hairmath::geometry::{local_direction, V3};
 use hairmath::models::{
-    Attenuation, Azimuthal, ComposedHair, ComposedLobe, Composition, CompositionError, Constants,
-    Distribution, Frostbite, LobeFactors, LobeTableSize, Longitudinal,
+    far_field_lobe_table, gerard_lobe_table, nguyen_donnelly_lobe_table, Attenuation, Azimuthal,
+    ComposedHair, ComposedLobe, Composition, CompositionError, Constants, Distribution, Frostbite,
+    LobeFactors, LobeTableSize, Longitudinal, MarschnerTableSize,
 };
-use hairmath::params::{HairParams, HairValues};
+use hairmath::params::{HairParams, HairValues, RefractiveIndex};
 use proptest::prelude::*;
 
 fn hair(beta_m: f64, beta_n: f64, alpha_deg: f64, eta: f64, sigma_a: f64) -> HairParams {
@@ -74,6 +75,8 @@ fn every_lobe_option(lobe: ComposedLobe) -> Vec<LobeFactors> {
         Azimuthal::FarField,
         Azimuthal::KarisReflection,
         Azimuthal::Table { absorption: None },
+        Azimuthal::GerardTable { absorption: None },
+        Azimuthal::NguyenDonnellyTable,
     ];
     let mut distributions: Vec<Distribution> = constants.map(Distribution::Karis).to_vec();
     distributions.extend([Distribution::FrostbiteTable, Distribution::FrostbiteScaled]);
@@ -90,6 +93,9 @@ fn every_lobe_option(lobe: ComposedLobe) -> Vec<LobeFactors> {
     for c in constants {
         for attenuation in [Attenuation::Offset(c), Attenuation::Exponential(c)] {
             azimuthals.push(Azimuthal::Table {
+                absorption: Some(attenuation),
+            });
+            azimuthals.push(Azimuthal::GerardTable {
                 absorption: Some(attenuation),
             });
         }
@@ -122,6 +128,7 @@ fn every_single_lobe_composition(nodes: usize) -> Vec<Composition> {
         residual: false,
         far_field_nodes: nodes,
         table: LobeTableSize::OFFERED[0],
+        marschner_table: MarschnerTableSize::OFFERED[0],
     };
     let mut out = vec![Composition {
         residual: true,
@@ -137,10 +144,10 @@ fn every_single_lobe_composition(nodes: usize) -> Vec<Composition> {
 
 #[test]
 fn every_lobe_takes_the_options_the_planner_offers() {
-    // Five longitudinal factors, times 3 azimuthal ones for R and 17 for TT and TRT.
-    assert_eq!(every_lobe_option(ComposedLobe::R).len(), 15);
-    assert_eq!(every_lobe_option(ComposedLobe::Tt).len(), 85);
-    assert_eq!(every_lobe_option(ComposedLobe::Trt).len(), 85);
+    // Five longitudinal factors, times 5 azimuthal ones for R and 22 for TT and TRT.
+    assert_eq!(every_lobe_option(ComposedLobe::R).len(), 25);
+    assert_eq!(every_lobe_option(ComposedLobe::Tt).len(), 110);
+    assert_eq!(every_lobe_option(ComposedLobe::Trt).len(), 110);
 }
 
 #[test]
@@ -156,6 +163,7 @@ fn the_far_field_composition_is_chiangs_far_field() {
         residual: true,
         far_field_nodes: 32,
         table: LobeTableSize::OFFERED[0],
+        marschner_table: MarschnerTableSize::OFFERED[0],
     };
     let params = brown();
     let composed = ComposedHair::new(&params, composition).expect("valid");
@@ -193,6 +201,7 @@ fn the_reduced_deon_lobe_is_within_the_reduced_bessel_error() {
             residual: false,
             far_field_nodes: 16,
             table: LobeTableSize::OFFERED[0],
+            marschner_table: MarschnerTableSize::OFFERED[0],
         }
     };
     let mut worst: f64 = 0.0;
@@ -238,6 +247,7 @@ fn the_frostbite_composition_is_the_frostbite_model() {
         residual: false,
         far_field_nodes: 1,
         table: LobeTableSize::OFFERED[0],
+        marschner_table: MarschnerTableSize::OFFERED[0],
     };
     let params = brown();
     let composed = ComposedHair::new(&params, composition).expect("valid");
@@ -322,6 +332,7 @@ fn factors_that_do_not_fit_their_lobe_are_errors() {
         residual: false,
         far_field_nodes: 8,
         table: LobeTableSize::OFFERED[0],
+        marschner_table: MarschnerTableSize::OFFERED[0],
     };
     let separable = Azimuthal::Separable {
         distribution: Distribution::Karis(Constants::Published),
@@ -342,6 +353,22 @@ fn factors_that_do_not_fit_their_lobe_are_errors() {
                     distribution: Distribution::FrostbiteTable,
                     attenuation: Attenuation::Offset(Constants::Refit),
                 },
+            ),
+        ),
+        empty.with_lobe(
+            ComposedLobe::R,
+            f(
+                Longitudinal::Deon,
+                Azimuthal::GerardTable {
+                    absorption: Some(Attenuation::Offset(Constants::Refit)),
+                },
+            ),
+        ),
+        empty.with_lobe(
+            ComposedLobe::Tt,
+            f(
+                Longitudinal::Deon,
+                Azimuthal::GerardTable { absorption: None },
             ),
         ),
     ];
@@ -366,6 +393,23 @@ fn factors_that_do_not_fit_their_lobe_are_errors() {
         };
         let error = ComposedHair::new(&params, composition).expect_err("rejected");
         assert_eq!(error, CompositionError::Nodes(nodes));
+    }
+    let nguyen = empty.with_lobe(
+        ComposedLobe::R,
+        f(Longitudinal::Deon, Azimuthal::NguyenDonnellyTable),
+    );
+    for size in [(1, 16), (32, 4097)] {
+        let marschner_table = MarschnerTableSize {
+            phi: size.0,
+            theta_d: size.1,
+        };
+        let composition = Composition {
+            marschner_table,
+            ..nguyen
+        };
+        let error = ComposedHair::new(&params, composition).expect_err("rejected");
+        assert_eq!(error, CompositionError::MarschnerTable(marschner_table));
+        assert!(error.to_string().contains("2 to 4096 texels"), "{error}");
     }
     // Without a far field the node count is not read.
     let karis_r = empty.with_lobe(
@@ -395,7 +439,7 @@ proptest! {
         theta_i in -FRAC_PI_2..FRAC_PI_2,
         theta_o in -FRAC_PI_2..FRAC_PI_2,
         phi in -PI..PI,
-        option in 0usize..149,
+        option in 0usize..246,
     ) {
         let compositions = every_single_lobe_composition(4);
         let composition = compositions[option % compositions.len()];
@@ -406,9 +450,54 @@ proptest! {
     }
 }
 
+/// Gerard's table holds Marschner's `N_p` per radian of phi, as Chiang's far field holds its
+/// own: at normal incidence and without absorption both R lobes integrate over phi to
+/// `1/2 int F dh` and both TT lobes to `1/2 int (1 - F)^2 dh` (Marschner's cubic exit angle
+/// and smooth fibre move the energy in phi, not its total), so the tables, baked by
+/// different integrators of different models, agree on the totals. Nguyen and Donnelly's
+/// table at zero absorption holds the same values as Gerard's.
+#[test]
+fn the_marschner_tables_carry_the_far_fields_lobe_energies() {
+    let eta = RefractiveIndex::new(1.55).unwrap();
+    let gerard = gerard_lobe_table(MarschnerTableSize::OFFERED[1], eta).unwrap();
+    let far = far_field_lobe_table(LobeTableSize::OFFERED[2], eta).unwrap();
+    let nguyen =
+        nguyen_donnelly_lobe_table(MarschnerTableSize::OFFERED[1], eta, Absorption::NONE).unwrap();
+    let n = 4000;
+    let h = PI / n as f64;
+    let total = |f: &dyn Fn(f64) -> [f64; 3]| {
+        (0..=n).fold([0.0; 3], |acc, k| {
+            let w = if k == 0 || k == n { 0.5 * h } else { h };
+            let v = f(k as f64 * h);
+            core::array::from_fn(|p| acc[p] + w * v[p])
+        })
+    };
+    let g = total(&|phi| gerard.lookup_f64([phi, 0.0]));
+    let c = total(&|phi| far.lookup_f64([phi, 0.0, 0.3]));
+    for p in 0..2 {
+        assert!(
+            (g[p] - c[p]).abs() <= 5e-3 * c[p],
+            "lobe {p}: {g:?} vs {c:?}"
+        );
+    }
+    // Different axes (phi, theta_d against their cosines): agreement to the lookups' error,
+    // away from phi = pi where the cosine axis resolves phi only to 0.18 rad.
+    for phi in [0.0, 0.5, 1.7] {
+        let a = gerard.lookup_f64([phi, 0.3]);
+        let b = nguyen.lookup_f64([phi.cos(), 0.3f64.cos()]);
+        assert!(
+            (a[0] - b[3]).abs() <= 2e-2 * a[0].max(1e-3),
+            "R {a:?} {b:?}"
+        );
+        assert!(
+            (a[1] - b[0]).abs() <= 2e-2 * a[1].max(1e-3),
+            "TT {a:?} {b:?}"
+        );
+    }
+}
+
 #[test]
 fn the_lobe_table_interpolates_the_far_field_within_its_measured_error() {
-    use hairmath::models::far_field_lobe_table;
     use hairmath::params::RefractiveIndex;
     let eta = RefractiveIndex::new(1.55).expect("eta");
     // Bounds about 1.4 times the worst error of any lobe measured (0.142, 0.060, 0.019).

@@ -9,11 +9,11 @@ use hairmath::diagnostics::{DirectionPairs, OpCounts};
 use hairmath::geometry::V3;
 use hairmath::models::{
     Attenuation, Azimuthal, ComposedHair, Composition, Constants, Distribution, LobeFactors,
-    LobeTableSize, Longitudinal,
+    LobeTableSize, Longitudinal, MarschnerTableSize,
 };
 use hairmath::plan::{
-    plan, scene_points, shader_argument, trace_composition, worst_error, Plan, PlanError,
-    PlanSettings, Scene, ScenePoint,
+    plan, scene_points, shader_argument, trace_composition, worst_error, LightMeasure, Plan,
+    PlanError, PlanSettings, Scene, ScenePoint,
 };
 
 fn scene(text: &str) -> Scene {
@@ -145,6 +145,7 @@ fn reduced_space() -> Vec<Composition> {
                         residual,
                         far_field_nodes: 8,
                         table: LobeTableSize::OFFERED[0],
+                        marschner_table: MarschnerTableSize::OFFERED[0],
                     });
                 }
             }
@@ -166,7 +167,9 @@ fn no_composition_of_a_reduced_space_meeting_the_budget_is_cheaper_than_the_plan
         };
         let p = planned(&s, &settings);
         let points = scene_points(&s.hair, settings.interior_points).expect("points");
-        let pairs = DirectionPairs::kronecker(settings.pairs);
+        let lights = [LightMeasure::Directional(DirectionPairs::kronecker(
+            settings.pairs,
+        ))];
         let arguments: Vec<&str> = s
             .hair
             .non_fixed()
@@ -176,7 +179,7 @@ fn no_composition_of_a_reduced_space_meeting_the_budget_is_cheaper_than_the_plan
         let centre: &ScenePoint = points.last().expect("a point");
         let mut cheapest = f64::INFINITY;
         for composition in reduced_space() {
-            let (error, _) = worst_error(composition, &points, &pairs, settings.reference_nodes)
+            let (error, _) = worst_error(composition, &points, &lights, settings.reference_nodes)
                 .expect("measured");
             if error <= s.budget {
                 let graph = trace_composition(composition, centre, &arguments).expect("traced");

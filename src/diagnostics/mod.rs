@@ -16,6 +16,9 @@
 //!   [`ChiangHair::far_field_azimuthal_reference`], relative to each lobe's peak over phi.
 //! - **Lobe curves** ([`lobe_curves`], and [`theta_curves`] against the inclination): S against the relative azimuth at fixed
 //!   inclinations, for plots of a model beside the reference.
+//! - **SH environments** ([`ShEnvironment`]): a model's outgoing radiance under every
+//!   environment of bands `l <= L` (its transfer), and the relative error of a model's
+//!   transfer against a reference's: the error measure of scenes lit by an SH environment.
 //! - **Timing** ([`ns_per_eval`]): indicative wall-clock nanoseconds per call of any model, on
 //!   deterministic inputs ([`crate::quadrature::kronecker`]).
 //!
@@ -51,6 +54,7 @@
 mod comparison;
 mod curves;
 mod energy;
+mod environment;
 mod furnace;
 mod integrator;
 mod report;
@@ -59,6 +63,8 @@ mod timing;
 pub use comparison::{DirectionPairs, EnergyReference, ModelError, OpCounts, ReferenceSamples};
 pub use curves::{lobe_curves, theta_curves, LobeCurve, ThetaCurve};
 pub use energy::{lobe_energies, LobeEnergies};
+pub(crate) use environment::relative_norm;
+pub use environment::{EnvironmentRule, ShEnvironment};
 pub use furnace::{albedo, viewing_direction, white_furnace, Furnace, FurnaceCase, VIEW_AZIMUTH};
 pub use integrator::{
     integrator_table, IntegratorRow, IntegratorSettings, IntegratorTable, NodeErrors, NodeTiming,

@@ -47,6 +47,16 @@
 //!   0.45, 0.6} relative to each lobe's peak (R, TT, TRT; `tests/composed.rs`): 0.14, 0.031,
 //!   0.10 at 16 x 8 x 10 texels; 0.044, 0.020, 0.060 at 32 x 16 x 10; 0.0079, 0.0042, 0.019
 //!   at 64 x 32 x 10.
+//! - [`Azimuthal::GerardTable`]: Marschner 2003's `N_p` without absorption from Gerard's
+//!   `N_p,LUT` over `(|phi|, |theta_d|)` ([`crate::lut::GerardN`], baked at the hair's eta with
+//!   Marschner's TRT caustic treatment at its defaults, one fetch of R, TT and TRT together) at
+//!   the composition's [`MarschnerTableSize`], times an absorption for TT and TRT as
+//!   [`Azimuthal::Table`]'s.
+//! - [`Azimuthal::NguyenDonnellyTable`]: Marschner's `N_p` with the hair's absorption baked in,
+//!   from Nguyen and Donnelly's N textures over `(cos phi, cos theta_d)`
+//!   ([`crate::lut::NguyenN`], Marschner's path length, the caustic treatment as above) at the
+//!   composition's [`MarschnerTableSize`]: in shader code whose absorption or eta varies the
+//!   table stays that of the hair it was baked for.
 //! - [`Azimuthal::KarisReflection`] (R only): Karis' `N_R = cos(phi/2)/4 F(eta,
 //!   sqrt((1 + wi.wo)/2))`, Schlick's Fresnel at the mirror reflection's angle of incidence.
 //! - [`Azimuthal::Separable`] (TT and TRT): a distribution `D(phi)` times an attenuation `A`:
@@ -87,7 +97,7 @@ use super::karis::{
 };
 use super::unreal::{chiang_r_width_in_sines, r_azimuthal, Published, Refitted};
 use crate::absorption::{Absorption, PathLength};
-use crate::azimuthal::Refraction;
+use crate::azimuthal::{CausticParams, Refraction};
 use crate::bcsdf::{
     eta_in, roughness_in, tilt_in, Bcsdf, ChiangFarField, ChiangUniforms, FarFieldRule, Input,
     InputsIn, Model, OffsetNodes, Offsets, OffsetsIn, Outgoing, PairAngles, Query, VaryingInputs,
@@ -95,9 +105,10 @@ use crate::bcsdf::{
 };
 use crate::geometry::local_fibre_angles;
 use crate::lobe::{gaussian_lobe, hg_circle_factor, BesselForm};
-use crate::lut::{bake, FarFieldN, SharedTable, Table, TableMeta};
+use crate::lut::{bake, Baker, FarFieldN, GerardN, NguyenN, SharedTable, Table, TableMeta};
 use crate::params::{AzimuthalRoughness, HairParams, RefractiveIndex};
 use crate::real::{safe_sqrt, NamedConstant, Real};
+use core::f64::consts::FRAC_PI_2;
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
 
@@ -183,6 +194,16 @@ pub enum Azimuthal {
         /// `e^(-k sigma_a)`.
         absorption: Option<Attenuation>,
     },
+    /// Marschner's `N_p` without absorption from Gerard's table over `(|phi|, |theta_d|)` at
+    /// the composition's [`MarschnerTableSize`], times an absorption (`None` for R; TT and TRT
+    /// take one), as [`Azimuthal::Table`].
+    GerardTable {
+        /// As [`Azimuthal::Table`]'s.
+        absorption: Option<Attenuation>,
+    },
+    /// Marschner's `N_p` with the hair's absorption from Nguyen and Donnelly's N textures over
+    /// `(cos phi, cos theta_d)` at the composition's [`MarschnerTableSize`].
+    NguyenDonnellyTable,
     /// A distribution times an attenuation (TT and TRT).
     Separable {
         /// `D(phi)`.
@@ -234,9 +255,11 @@ impl ComposedLobe {
     pub fn accepts(self, azimuthal: Azimuthal) -> bool {
         match (self, azimuthal) {
             (_, Azimuthal::FarField) => true,
-            (lobe, Azimuthal::Table { absorption }) => {
+            (lobe, Azimuthal::Table { absorption })
+            | (lobe, Azimuthal::GerardTable { absorption }) => {
                 absorption.is_none() == (lobe == ComposedLobe::R)
             }
+            (_, Azimuthal::NguyenDonnellyTable) => true,
             (ComposedLobe::R, a) => a == Azimuthal::KarisReflection,
             (_, Azimuthal::KarisReflection) => false,
             (lobe, Azimuthal::Separable { distribution, .. }) => match distribution {
@@ -265,6 +288,32 @@ pub struct Composition {
     /// The texels of the far-field lobe table, where a lobe reads it (each at least 2;
     /// ignored otherwise).
     pub table: LobeTableSize,
+    /// The texels of Gerard's or Nguyen and Donnelly's table, where a lobe reads one (each
+    /// 2 to 4096; ignored otherwise).
+    pub marschner_table: MarschnerTableSize,
+}
+
+/// The texels of Gerard's or Nguyen and Donnelly's table of Marschner's `N_p`, per axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct MarschnerTableSize {
+    /// Over |phi| in [0, pi] (Gerard) or cos phi in [-1, 1] (Nguyen and Donnelly).
+    pub phi: usize,
+    /// Over |theta_d| in [0, pi/2] (Gerard) or cos theta_d in [0, 1] (Nguyen and Donnelly).
+    pub theta_d: usize,
+}
+
+impl MarschnerTableSize {
+    /// The sizes the planner offers: 32 x 16 and Gerard's 128 x 64.
+    pub const OFFERED: [MarschnerTableSize; 2] = [
+        MarschnerTableSize {
+            phi: 32,
+            theta_d: 16,
+        },
+        MarschnerTableSize {
+            phi: 128,
+            theta_d: 64,
+        },
+    ];
 }
 
 /// The texels of the far-field lobe table ([`far_field_lobe_table`]) per axis.
@@ -308,7 +357,8 @@ pub enum CompositionError {
     #[error(
         "the {lobe} lobe cannot take the azimuthal factor {azimuthal:?}: R takes FarField or \
          KarisReflection, TT and TRT FarField or Separable (FrostbiteTable for TT only, \
-         FrostbiteScaled for TRT only)"
+         FrostbiteScaled for TRT only); every lobe Table, GerardTable (with an absorption for \
+         TT and TRT only) or NguyenDonnellyTable"
     )]
     Azimuthal {
         /// The lobe.
@@ -319,6 +369,12 @@ pub enum CompositionError {
     /// A lobe table with fewer than two texels on an axis, or more than 4096.
     #[error("table = {0:?} is not allowed: each axis of the lobe table takes 2 to 4096 texels")]
     Table(LobeTableSize),
+    /// A Marschner table with fewer than two texels on an axis, or more than 4096.
+    #[error(
+        "marschner_table = {0:?} is not allowed: each axis of Gerard's and Nguyen and \
+         Donnelly's tables takes 2 to 4096 texels"
+    )]
+    MarschnerTable(MarschnerTableSize),
     /// The lobe table could not be baked (the message says why).
     #[error("the far-field lobe table could not be baked: {0}")]
     Baking(String),
@@ -377,14 +433,32 @@ impl Composition {
             let t = self.table;
             parts.push(format!("table: {} x {} x {}", t.phi, t.theta_o, t.beta_n));
         }
+        if self.uses_marschner_table() {
+            let t = self.marschner_table;
+            parts.push(format!("Marschner table: {} x {}", t.phi, t.theta_d));
+        }
         parts.join("; ")
+    }
+
+    /// Whether a lobe's azimuthal factor satisfies `reads`.
+    fn any_azimuthal(&self, reads: impl Fn(Azimuthal) -> bool) -> bool {
+        ComposedLobe::ALL
+            .iter()
+            .any(|&l| self.lobe(l).is_some_and(|f| reads(f.azimuthal)))
     }
 
     /// Whether a lobe reads the far-field lobe table.
     pub fn uses_table(&self) -> bool {
-        ComposedLobe::ALL.iter().any(|&l| {
-            self.lobe(l)
-                .is_some_and(|f| matches!(f.azimuthal, Azimuthal::Table { .. }))
+        self.any_azimuthal(|a| matches!(a, Azimuthal::Table { .. }))
+    }
+
+    /// Whether a lobe reads Gerard's or Nguyen and Donnelly's table.
+    pub fn uses_marschner_table(&self) -> bool {
+        self.any_azimuthal(|a| {
+            matches!(
+                a,
+                Azimuthal::GerardTable { .. } | Azimuthal::NguyenDonnellyTable
+            )
         })
     }
 
@@ -411,6 +485,11 @@ impl Composition {
             .all(|n| (2..=4096).contains(n));
         if self.uses_table() && !table_ok {
             return Err(CompositionError::Table(t));
+        }
+        let m = self.marschner_table;
+        let marschner_ok = [m.phi, m.theta_d].iter().all(|n| (2..=4096).contains(n));
+        if self.uses_marschner_table() && !marschner_ok {
+            return Err(CompositionError::MarschnerTable(m));
         }
         Ok(())
     }
@@ -461,12 +540,15 @@ impl Attenuation {
 }
 
 impl Azimuthal {
-    /// `far_field`, `karis_reflection` or `separable`.
+    /// `far_field`, `karis_reflection`, `table`, `gerard_table`, `nguyen_donnelly_table` or
+    /// `separable`.
     pub fn name(self) -> &'static str {
         match self {
             Azimuthal::FarField => "far_field",
             Azimuthal::KarisReflection => "karis_reflection",
             Azimuthal::Table { .. } => "table",
+            Azimuthal::GerardTable { .. } => "gerard_table",
+            Azimuthal::NguyenDonnellyTable => "nguyen_donnelly_table",
             Azimuthal::Separable { .. } => "separable",
         }
     }
@@ -489,6 +571,13 @@ impl LobeFactors {
             Azimuthal::Table {
                 absorption: Some(a),
             } => format!("far-field table x absorption {}", a.describe()),
+            Azimuthal::GerardTable { absorption: None } => "Gerard's Marschner table".to_string(),
+            Azimuthal::GerardTable {
+                absorption: Some(a),
+            } => format!("Gerard's Marschner table x absorption {}", a.describe()),
+            Azimuthal::NguyenDonnellyTable => {
+                "Nguyen-Donnelly's Marschner table (absorption baked)".to_string()
+            }
             Azimuthal::Separable {
                 distribution,
                 attenuation,
@@ -725,16 +814,85 @@ pub fn far_field_lobe_table(
     size: LobeTableSize,
     eta: RefractiveIndex,
 ) -> Result<SharedTable<3, 3>, CompositionError> {
-    type Cache = Mutex<HashMap<(LobeTableSize, u64), SharedTable<3, 3>>>;
-    static TABLES: OnceLock<Cache> = OnceLock::new();
-    let key = (size, eta.get().to_bits());
-    let cache = TABLES.get_or_init(Cache::default);
+    static TABLES: TableCache<(LobeTableSize, u64), SharedTable<3, 3>> = OnceLock::new();
+    cached(&TABLES, (size, eta.get().to_bits()), || {
+        bake_lobe_table(size, eta)
+    })
+}
+
+/// Tables baked once per key and shared (a fetch from two copies of one is a fetch from one
+/// table in the traced graph).
+type TableCache<K, T> = OnceLock<Mutex<HashMap<K, T>>>;
+
+/// The table of `key` in `cache`, baked by `bake` the first time.
+fn cached<K: Eq + std::hash::Hash, T: Clone>(
+    cache: &TableCache<K, T>,
+    key: K,
+    bake: impl FnOnce() -> Result<T, CompositionError>,
+) -> Result<T, CompositionError> {
+    let cache = cache.get_or_init(Mutex::default);
     if let Some(table) = cache.lock().unwrap_or_else(|p| p.into_inner()).get(&key) {
         return Ok(table.clone());
     }
-    let table = bake_lobe_table(size, eta)?;
+    let table = bake()?;
     let mut tables = cache.lock().unwrap_or_else(|p| p.into_inner());
     Ok(tables.entry(key).or_insert(table).clone())
+}
+
+/// Gerard's `N_p,LUT` ([`GerardN`]: Marschner's `N_R`, `N_TT`, `N_TRT` without absorption
+/// over |phi| in [0, pi] and |theta_d| in [0, pi/2]) for index `eta` at `size` texels, with
+/// Marschner's TRT caustic treatment at its defaults. Baked once per size and index and
+/// shared.
+///
+/// # Errors
+/// [`CompositionError::MarschnerTable`] for sizes outside 2..=4096.
+pub fn gerard_lobe_table(
+    size: MarschnerTableSize,
+    eta: RefractiveIndex,
+) -> Result<SharedTable<2, 3>, CompositionError> {
+    static TABLES: TableCache<(MarschnerTableSize, u64), SharedTable<2, 3>> = OnceLock::new();
+    cached(&TABLES, (size, eta.get().to_bits()), || {
+        let baker = GerardN::new(eta, FRAC_PI_2, Some(CausticParams::default()))
+            .map_err(|e| CompositionError::Baking(e.to_string()))?;
+        bake_marschner_table(&baker, size)
+    })
+}
+
+/// Nguyen and Donnelly's N textures as one table ([`NguyenN`]: Marschner's `N_TT` rgb, `N_R`,
+/// `N_TRT` rgb with absorption `sigma_a` over cos phi in [-1, 1] and cos theta_d in [0, 1])
+/// for index `eta` at `size` texels, with Marschner's TRT caustic treatment at its defaults.
+/// Baked once per size, index and absorption and shared.
+///
+/// # Errors
+/// [`CompositionError::MarschnerTable`] for sizes outside 2..=4096.
+pub fn nguyen_donnelly_lobe_table(
+    size: MarschnerTableSize,
+    eta: RefractiveIndex,
+    sigma_a: Absorption,
+) -> Result<SharedTable<2, 7>, CompositionError> {
+    type Key = (MarschnerTableSize, u64, [u64; 3]);
+    static TABLES: TableCache<Key, SharedTable<2, 7>> = OnceLock::new();
+    let key = (size, eta.get().to_bits(), sigma_a.rgb().map(f64::to_bits));
+    cached(&TABLES, key, || {
+        let baker = NguyenN::new(eta, sigma_a, Some(CausticParams::default()));
+        bake_marschner_table(&baker, size)
+    })
+}
+
+/// `baker`'s table at `size`.
+fn bake_marschner_table<const C: usize>(
+    baker: &dyn Baker,
+    size: MarschnerTableSize,
+) -> Result<SharedTable<2, C>, CompositionError> {
+    if ![size.phi, size.theta_d]
+        .iter()
+        .all(|n| (2..=4096).contains(n))
+    {
+        return Err(CompositionError::MarschnerTable(size));
+    }
+    bake(baker, &[size.phi, size.theta_d])
+        .and_then(SharedTable::new)
+        .map_err(|e| CompositionError::Baking(e.to_string()))
 }
 
 /// [`far_field_lobe_table`], baked.
@@ -800,12 +958,43 @@ pub struct ComposedHair<R> {
     tt_table: SharedTable<2, 2>,
     /// The far-field lobe table, where a lobe reads it.
     lobe_table: Option<SharedTable<3, 3>>,
+    /// Gerard's and Nguyen and Donnelly's tables, where a lobe reads them.
+    marschner: MarschnerTables,
+}
+
+/// The tables of Marschner's `N_p` a composition reads.
+#[derive(Clone, Debug, PartialEq)]
+struct MarschnerTables {
+    /// [`gerard_lobe_table`].
+    gerard: Option<SharedTable<2, 3>>,
+    /// [`nguyen_donnelly_lobe_table`].
+    nguyen_donnelly: Option<SharedTable<2, 7>>,
+}
+
+impl MarschnerTables {
+    /// Those `composition` reads, for `hair`.
+    fn of(composition: &Composition, hair: &HairParams) -> Result<Self, CompositionError> {
+        let size = composition.marschner_table;
+        let gerard = composition.any_azimuthal(|a| matches!(a, Azimuthal::GerardTable { .. }));
+        let nguyen = composition.any_azimuthal(|a| a == Azimuthal::NguyenDonnellyTable);
+        Ok(MarschnerTables {
+            gerard: match gerard {
+                true => Some(gerard_lobe_table(size, hair.eta)?),
+                false => None,
+            },
+            nguyen_donnelly: match nguyen {
+                true => Some(nguyen_donnelly_lobe_table(size, hair.eta, hair.sigma_a)?),
+                false => None,
+            },
+        })
+    }
 }
 
 impl ComposedHair<f64> {
     /// The composed model of the hair `hair`. A lobe table is baked (once per size and index,
-    /// [`far_field_lobe_table`]) at the hair's eta: in shader code whose eta varies the table
-    /// stays that of this eta.
+    /// [`far_field_lobe_table`], [`gerard_lobe_table`]) at the hair's eta, and Nguyen and
+    /// Donnelly's also at its absorption ([`nguyen_donnelly_lobe_table`]): in shader code
+    /// whose eta or absorption varies the tables stay those of this hair.
     ///
     /// # Errors
     /// [`CompositionError`] if the composition's factors do not fit together.
@@ -822,7 +1011,8 @@ impl ComposedHair<f64> {
             true => Some(far_field_lobe_table(composition.table, hair.eta)?),
             false => None,
         };
-        Ok(Self::checked(uniforms, composition, lobe_table))
+        let marschner = MarschnerTables::of(&composition, hair)?;
+        Ok(Self::checked(uniforms, composition, lobe_table, marschner))
     }
 
     /// The model of the checked `composition` reading `uniforms`, with its node rule (one
@@ -831,6 +1021,7 @@ impl ComposedHair<f64> {
         uniforms: ComposedUniforms<f64>,
         composition: Composition,
         lobe_table: Option<SharedTable<3, 3>>,
+        marschner: MarschnerTables,
     ) -> Self {
         let nodes = match composition.uses_far_field() {
             true => composition.far_field_nodes,
@@ -844,6 +1035,7 @@ impl ComposedHair<f64> {
             nodes: OffsetNodes::new(&rule),
             tt_table: frostbite_tt_table(),
             lobe_table,
+            marschner,
         }
     }
 }
@@ -859,6 +1051,15 @@ impl<R> ComposedHair<R> {
     pub fn tt_table(&self) -> &SharedTable<2, 2> {
         &self.tt_table
     }
+}
+
+/// What the tables a composition reads give at one query: the far-field lobe table's
+/// unabsorbed `N_R`, `N_TT`, `N_TRT`, Gerard's the same of Marschner's model, Nguyen and
+/// Donnelly's `N_TT` rgb, `N_R`, `N_TRT` rgb.
+struct TableValues<R> {
+    lobe: [R; 3],
+    gerard: [R; 3],
+    nguyen_donnelly: [R; 7],
 }
 
 /// The angles the factors read, computed once per query.
@@ -886,10 +1087,13 @@ impl<R: Real> ComposedAngles<R> {
     /// Marschner's conversion of a lobe in theta_h to a density in `sin theta_i`,
     /// `cos theta_i / (2 cos^2 theta_d)` (module documentation; `cos^2 theta_d` floored).
     fn marschner_conversion(&self) -> R {
-        let cos_d = (R::c(0.5) * (self.theta_o - self.theta_i))
-            .cos()
-            .label("cos_theta_d");
+        let cos_d = self.theta_d().cos().label("cos_theta_d");
         R::c(0.5) * self.pair.cos_i / (cos_d * cos_d).max(R::c(MIN_COS2_THETA_D))
+    }
+
+    /// theta_d = (theta_o - theta_i) / 2.
+    fn theta_d(&self) -> R {
+        (R::c(0.5) * (self.theta_o - self.theta_i)).label("theta_d")
     }
 
     fn of(query: &Query<R>) -> Self {
@@ -1057,28 +1261,49 @@ impl<R: Real> ComposedHair<R> {
         }
     }
 
-    /// `lobe`'s `N A` per channel; `far` holds the far field's `N_p A_p`, `table` the lobe
-    /// table's unabsorbed `N_p`.
+    /// The unabsorbed `N` of a table times `absorption` for TT and TRT (`None` for R).
+    fn with_absorption(
+        &self,
+        lobe: ComposedLobe,
+        n: R,
+        absorption: Option<Attenuation>,
+        a: &ComposedAngles<R>,
+    ) -> [R; 3] {
+        match (absorption, lobe) {
+            (Some(absorption), ComposedLobe::Tt) => {
+                self.absorbed(Transmitted::Tt, absorption, a).map(|t| n * t)
+            }
+            (Some(absorption), _) => self
+                .absorbed(Transmitted::Trt, absorption, a)
+                .map(|t| n * t),
+            (None, _) => [n; 3],
+        }
+    }
+
+    /// `lobe`'s `N A` per channel; `far` holds the far field's `N_p A_p`, `tables` what the
+    /// tables gave.
     fn azimuthal(
         &self,
         lobe: ComposedLobe,
         n: Azimuthal,
         a: &ComposedAngles<R>,
         far: &[[R; 3]; 4],
-        table: &[R; 3],
+        tables: &TableValues<R>,
     ) -> [R; 3] {
         match (n, lobe) {
             (Azimuthal::FarField, _) => far[lobe.p()],
             (Azimuthal::Table { absorption }, _) => {
-                let n = table[lobe.p()];
-                match (absorption, lobe) {
-                    (Some(absorption), ComposedLobe::Tt) => {
-                        self.absorbed(Transmitted::Tt, absorption, a).map(|t| n * t)
-                    }
-                    (Some(absorption), _) => self
-                        .absorbed(Transmitted::Trt, absorption, a)
-                        .map(|t| n * t),
-                    (None, _) => [n; 3],
+                self.with_absorption(lobe, tables.lobe[lobe.p()], absorption, a)
+            }
+            (Azimuthal::GerardTable { absorption }, _) => {
+                self.with_absorption(lobe, tables.gerard[lobe.p()], absorption, a)
+            }
+            (Azimuthal::NguyenDonnellyTable, _) => {
+                let [tt_r, tt_g, tt_b, r, trt_r, trt_g, trt_b] = tables.nguyen_donnelly;
+                match lobe {
+                    ComposedLobe::R => [r; 3],
+                    ComposedLobe::Tt => [tt_r, tt_g, tt_b],
+                    ComposedLobe::Trt => [trt_r, trt_g, trt_b],
                 }
             }
             (Azimuthal::KarisReflection, _) => {
@@ -1104,6 +1329,29 @@ impl<R: Real> ComposedHair<R> {
         }
     }
 
+    /// The fetches of the tables the composition reads (0 for the others).
+    fn table_values(&self, a: &ComposedAngles<R>) -> TableValues<R> {
+        let zero = R::c(0.0);
+        let m = &self.marschner;
+        TableValues {
+            lobe: match &self.lobe_table {
+                Some(t) => t.sample([a.phi.abs(), a.theta_o.abs(), self.uniforms.beta_n]),
+                None => [zero; 3],
+            },
+            gerard: match &m.gerard {
+                Some(t) => t.sample([a.phi.abs(), a.theta_d().abs()]),
+                None => [zero; 3],
+            },
+            nguyen_donnelly: match &m.nguyen_donnelly {
+                Some(t) => {
+                    let cos_phi = a.phi.cos().label("cos_phi");
+                    t.sample([cos_phi, a.theta_d().cos().label("cos_theta_d")])
+                }
+                None => [zero; 7],
+            },
+        }
+    }
+
     /// `[R, TT, TRT, residual]` per channel (a dropped lobe is 0).
     fn lobes(&self, query: &Query<R>) -> [[R; 3]; 4] {
         let a = ComposedAngles::of(query);
@@ -1119,15 +1367,12 @@ impl<R: Real> ComposedHair<R> {
             }
             false => zero,
         };
-        let table = match &self.lobe_table {
-            Some(t) => t.sample([a.phi.abs(), a.theta_o.abs(), self.uniforms.beta_n]),
-            None => [R::c(0.0); 3],
-        };
+        let tables = self.table_values(&a);
         let mut lobes = zero;
         for lobe in ComposedLobe::ALL {
             if let Some(f) = self.composition.lobe(lobe) {
                 let m = self.longitudinal(lobe, f.longitudinal, &a, (&chiang, &deon));
-                let n = self.azimuthal(lobe, f.azimuthal, &a, &far, &table);
+                let n = self.azimuthal(lobe, f.azimuthal, &a, &far, &tables);
                 lobes[lobe.p()] = n.map(|x| (m * x).label(LOBE_LABELS[lobe.p()]));
             }
         }
@@ -1185,6 +1430,7 @@ impl Model for ComposedHair<f64> {
             nodes: self.nodes.cast(),
             tt_table: self.tt_table.clone(),
             lobe_table: self.lobe_table.clone(),
+            marschner: self.marschner.clone(),
         }
     }
 }

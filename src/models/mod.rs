@@ -104,7 +104,7 @@ pub use frostbite_hair::{
 // Models composed per lobe and per factor (what scene plans choose from).
 mod composed;
 pub use composed::{
-    far_field_lobe_table, Attenuation, Azimuthal, ComposedHair, ComposedLobe, ComposedUniforms,
-    Composition, CompositionError, Constants, Distribution, LobeFactors, LobeTableSize,
-    Longitudinal, COMPOSED_LOBES,
+    far_field_lobe_table, gerard_lobe_table, nguyen_donnelly_lobe_table, Attenuation, Azimuthal,
+    ComposedHair, ComposedLobe, ComposedUniforms, Composition, CompositionError, Constants,
+    Distribution, LobeFactors, LobeTableSize, Longitudinal, MarschnerTableSize, COMPOSED_LOBES,
 };

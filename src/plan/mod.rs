@@ -2,11 +2,13 @@
 //! Chiang et al. 2016's far field stays within a budget over the hair a scene contains.
 
 mod catalogue;
+mod measure;
 mod published;
 mod scene;
 mod search;
 
 pub use catalogue::*;
+pub use measure::*;
 pub use published::*;
 pub use scene::*;
 pub use search::*;

@@ -1,11 +1,11 @@
 //! A plan against the published real-time models: each registered approximation
-//! ([`crate::registry::MODELS`]) measured on the plan's hairs and pairs with the plan's
+//! ([`crate::registry::MODELS`]) measured on the plan's hairs and lights with the plan's
 //! reference, at its documented mapping from the physical parameters
 //! ([`crate::models::Approximation::mapped_inputs`]), and costed as the plan is.
 
 use super::search::{Plan, PlanError, PlanSettings, ScenePoint};
 use crate::bcsdf::{ChiangFarField, FarFieldRule};
-use crate::diagnostics::{DirectionPairs, OpCounts, ReferenceSamples};
+use crate::diagnostics::OpCounts;
 use crate::registry::MODELS;
 
 /// One published model beside a plan.
@@ -13,7 +13,7 @@ use crate::registry::MODELS;
 pub struct PublishedComparison {
     /// The model's registered name.
     pub model: &'static str,
-    /// Its E at its mapped inputs, the worst over the plan's hairs.
+    /// Its E at its mapped inputs, the worst over the plan's hairs and lights.
     pub error: f64,
     /// Its weighted cost ([`super::OpWeights`]): the shader with every input baked at the hair of
     /// the plan's last point (for a scene whose parameters vary this is below what a shader
@@ -26,8 +26,8 @@ pub struct PublishedComparison {
     pub dominated: bool,
 }
 
-/// Every registered approximation with a shader form beside `plan`, measured with
-/// `settings`' pairs, reference and weights.
+/// Every registered approximation with a shader form beside `plan`, measured under the plan's
+/// lights with `settings`' reference and weights.
 ///
 /// # Errors
 /// [`PlanError::Param`] if a model rejects its mapped inputs; [`PlanError::Argument`] if one
@@ -36,16 +36,14 @@ pub fn compare_published(
     plan: &Plan,
     settings: &PlanSettings,
 ) -> Result<Vec<PublishedComparison>, PlanError> {
-    let pairs = DirectionPairs::kronecker(settings.pairs);
     let rule = FarFieldRule::gauss_legendre(settings.reference_nodes)?;
-    let references: Vec<ReferenceSamples> = plan
+    // Per point, per light, the reference's vector.
+    let references: Vec<Vec<Vec<f64>>> = plan
         .points
         .iter()
         .map(|p| {
-            ReferenceSamples::new(
-                &ChiangFarField::<f64>::with_rule(&p.params, &rule),
-                pairs.clone(),
-            )
+            let reference = ChiangFarField::<f64>::with_rule(&p.params, &rule);
+            plan.lights.iter().map(|l| l.vector(&reference)).collect()
         })
         .collect();
     let mut out = Vec::new();
@@ -54,9 +52,11 @@ pub fn compare_published(
             continue;
         };
         let mut error: f64 = 0.0;
-        for (point, samples) in plan.points.iter().zip(&references) {
+        for (point, vectors) in plan.points.iter().zip(&references) {
             let model = (entry.build)(&(approximation.mapped_inputs)(&point.params))?;
-            error = error.max(samples.relative_error(model.as_ref()).full);
+            for (light, reference) in plan.lights.iter().zip(vectors) {
+                error = error.max(light.relative_error(model.as_ref(), reference));
+            }
         }
         let last: &ScenePoint = plan.points.last().unwrap_or(&plan.worst_point);
         let graph = entry.trace_shader(&(approximation.mapped_inputs)(&last.params), &[])?;

@@ -6,38 +6,44 @@
 //! - **The scene's hair** ([`scene_points`]): every corner of the box of the parameters the
 //!   scene gives as ranges (or varying), and interior points of a Kronecker sequence in it; a
 //!   scene of fixed parameters is one point.
-//! - **Error** E at each point: the models issue's `E = sqrt(sum (S - S_ref)^2 / sum S_ref^2)`
-//!   over direction pairs ([`crate::diagnostics::DirectionPairs::kronecker`], weighted by
-//!   `cos theta_i cos theta_o`), against the far field with [`PlanSettings::reference_nodes`]
-//!   Gauss-Legendre nodes; a plan's error is the worst over the points.
+//! - **Error** E at each point and for each of the scene's lights ([`LightMeasure`]), against
+//!   the far field with [`PlanSettings::reference_nodes`] Gauss-Legendre nodes: for
+//!   directional light the models issue's `E = sqrt(sum (S - S_ref)^2 / sum S_ref^2)` over
+//!   direction pairs ([`crate::diagnostics::DirectionPairs::kronecker`], weighted by
+//!   `cos theta_i cos theta_o`); for an SH environment of bands `l <= L` the relative error of
+//!   the outgoing radiance over the environments of those bands
+//!   ([`crate::diagnostics::ShEnvironment`]). A plan's error is the worst over the points and
+//!   the lights.
 //! - **Cost** ([`OpWeights`]): the traced shader's operation counts
 //!   ([`crate::diagnostics::OpCounts`]) weighted per kind, with the scene's non-fixed
 //!   parameters as shader arguments (their uniforms computed in the shader).
 //!
 //! # The search
 //!
-//! Every lobe option (the lobe's factors, or dropped) is evaluated alone at every point and
-//! pair, in `f64`; its difference from the reference's lobe is a vector, and the error of any
-//! combination of options is exactly the norm of the sum of their vectors, which the planner
-//! computes for every combination from the vectors' inner products (a Gram matrix per point):
+//! Every lobe option (the lobe's factors, or dropped) is evaluated alone at every point under
+//! every light, in `f64`; its difference from the reference's lobe is a vector (both measures
+//! are linear in the model), and the error of any combination of options is exactly the norm
+//! of the sum of their vectors, which the planner computes for every combination from the
+//! vectors' inner products (a Gram matrix per point and light):
 //! no combination's error is assumed from its parts' errors. Costs are not additive (lobes
 //! share the angles and the far field's loop), so the combinations that meet the budget are
 //! ordered by an additive estimate (each option's cost alone, the far field's loop counted
 //! once) and the [`PlanSettings::traced_candidates`] first are traced; the cheapest of them by
 //! traced cost is the plan, and its error is measured once more as a whole
-//! ([`crate::diagnostics::ReferenceSamples::relative_error`] of the composed model itself).
+//! ([`LightMeasure::relative_error`] of the composed model itself, [`worst_error`]).
 
-use super::scene::{CostMeasure, Environment, HairKey, Scene, SceneHair};
+use super::measure::LightMeasure;
+use super::scene::{CostMeasure, HairKey, Scene, SceneHair};
 use crate::absorption::Absorption;
 use crate::bcsdf::{
-    AbsorptionInput, Bcsdf, ChiangFarField, FarFieldRule, InputValue, InputValues, Query,
-    ShaderInputError, ShaderInputs,
+    AbsorptionInput, ChiangFarField, FarFieldRule, InputValue, InputValues, ShaderInputError,
+    ShaderInputs,
 };
-use crate::diagnostics::{DirectionPairs, OpCounts, ReferenceSamples};
+use crate::diagnostics::{EnvironmentRule, OpCounts};
 use crate::error::ParamError;
 use crate::models::{
     Attenuation, Azimuthal, ComposedHair, ComposedLobe, Composition, CompositionError, Constants,
-    Distribution, LobeFactors, LobeTableSize, Longitudinal,
+    Distribution, LobeFactors, LobeTableSize, Longitudinal, MarschnerTableSize,
 };
 use crate::params::{HairParams, HairValues};
 use crate::quadrature::kronecker;
@@ -103,11 +109,13 @@ pub struct PlanSettings {
     pub traced_candidates: usize,
     /// The cost of each kind of operation.
     pub weights: OpWeights,
+    /// The quadrature of an SH environment's error ([`crate::diagnostics::ShEnvironment`]).
+    pub environment: EnvironmentRule,
 }
 
 impl Default for PlanSettings {
     /// 2^12 pairs, a 64-node reference, 4 interior points, far fields of 4 to 64 nodes, 64
-    /// traced candidates, [`OpWeights::DEFAULT`].
+    /// traced candidates, [`OpWeights::DEFAULT`], [`EnvironmentRule::default`].
     fn default() -> Self {
         PlanSettings {
             pairs: 1 << 12,
@@ -116,6 +124,7 @@ impl Default for PlanSettings {
             far_field_nodes: vec![4, 8, 16, 32, 64],
             traced_candidates: 64,
             weights: OpWeights::DEFAULT,
+            environment: EnvironmentRule::default(),
         }
     }
 }
@@ -259,13 +268,14 @@ pub fn scene_points(hair: &SceneHair, interior: usize) -> Result<Vec<ScenePoint>
     Ok(points)
 }
 
-/// One lobe's option: its factors (or `None`, dropped) and the far-field node count it
-/// needs.
+/// One lobe's option: its factors (or `None`, dropped) and the far-field node count and
+/// table sizes it needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct LobeOption {
     factors: Option<LobeFactors>,
     nodes: Option<usize>,
     table: Option<LobeTableSize>,
+    marschner_table: Option<MarschnerTableSize>,
 }
 
 /// An option that needs neither the far field's loop nor the lobe table.
@@ -274,6 +284,7 @@ const fn plain(factors: Option<LobeFactors>) -> LobeOption {
         factors,
         nodes: None,
         table: None,
+        marschner_table: None,
     }
 }
 
@@ -281,9 +292,29 @@ const fn plain(factors: Option<LobeFactors>) -> LobeOption {
 /// R, TT, TRT and the residual (index 3).
 pub(super) const SLOTS: usize = 4;
 
-/// Every option of each slot (R, TT, TRT, residual); the lobe tables only `with_tables`
-/// (they are baked at one index of refraction).
-fn slot_options(far_field_nodes: &[usize], with_tables: bool) -> [Vec<LobeOption>; SLOTS] {
+/// Which tables a scene can use: every table is baked at one index of refraction, and
+/// Nguyen and Donnelly's at one absorption too.
+#[derive(Clone, Copy, Debug)]
+struct TableUse {
+    /// The scene's eta is fixed.
+    eta_fixed: bool,
+    /// Its eta and both melanins are fixed.
+    absorption_fixed: bool,
+}
+
+impl TableUse {
+    fn of(hair: &SceneHair) -> Self {
+        let fixed = |key| hair.get(key).is_fixed();
+        let eta_fixed = fixed(HairKey::Eta);
+        TableUse {
+            eta_fixed,
+            absorption_fixed: eta_fixed && fixed(HairKey::Eumelanin) && fixed(HairKey::Pheomelanin),
+        }
+    }
+}
+
+/// Every option of each slot (R, TT, TRT, residual), the tables as `tables` allows.
+fn slot_options(far_field_nodes: &[usize], tables: TableUse) -> [Vec<LobeOption>; SLOTS] {
     let dropped = plain(None);
     let ms = [
         Longitudinal::Deon,
@@ -332,11 +363,30 @@ fn slot_options(far_field_nodes: &[usize], with_tables: bool) -> [Vec<LobeOption
                 ComposedLobe::R => vec![None],
                 _ => attenuations.iter().map(|&a| Some(a)).collect(),
             };
-            for size in LobeTableSize::OFFERED.iter().filter(|_| with_tables) {
+            for size in LobeTableSize::OFFERED.iter().filter(|_| tables.eta_fixed) {
                 for &absorption in &absorptions {
                     options.push(LobeOption {
                         table: Some(*size),
                         ..plain(factors(Azimuthal::Table { absorption }))
+                    });
+                }
+            }
+            for size in MarschnerTableSize::OFFERED {
+                let mut marschner = Vec::new();
+                if tables.eta_fixed {
+                    marschner.extend(
+                        absorptions
+                            .iter()
+                            .map(|&absorption| Azimuthal::GerardTable { absorption }),
+                    );
+                }
+                if tables.absorption_fixed {
+                    marschner.push(Azimuthal::NguyenDonnellyTable);
+                }
+                for azimuthal in marschner {
+                    options.push(LobeOption {
+                        marschner_table: Some(size),
+                        ..plain(factors(azimuthal))
                     });
                 }
             }
@@ -361,6 +411,7 @@ fn slot_options(far_field_nodes: &[usize], with_tables: bool) -> [Vec<LobeOption
 fn compose(options: [&LobeOption; SLOTS]) -> Composition {
     let nodes = options.iter().find_map(|o| o.nodes).unwrap_or(1);
     let table = options.iter().find_map(|o| o.table);
+    let marschner_table = options.iter().find_map(|o| o.marschner_table);
     Composition {
         r: options[0].factors,
         tt: options[1].factors,
@@ -368,6 +419,7 @@ fn compose(options: [&LobeOption; SLOTS]) -> Composition {
         residual: options[3].nodes.is_some(),
         far_field_nodes: nodes,
         table: table.unwrap_or(LobeTableSize::OFFERED[0]),
+        marschner_table: marschner_table.unwrap_or(MarschnerTableSize::OFFERED[0]),
     }
 }
 
@@ -377,40 +429,6 @@ fn alone(slot: usize, option: &LobeOption) -> Composition {
     let mut options = [&dropped; SLOTS];
     options[slot] = option;
     compose(options)
-}
-
-/// The reference at one point: per pair the weighted lobes, and the weighted sum of squares
-/// of S.
-struct PointReference {
-    /// `sqrt(w) S_ref,p` per slot, flattened over pairs and channels.
-    lobes: [Vec<f64>; SLOTS],
-    /// `sum w S_ref^2`.
-    norm: f64,
-}
-
-/// `sqrt(w) S_p` per slot for `model` on `pairs`, flattened over pairs and channels.
-fn weighted_lobes<M: Bcsdf<f64> + ?Sized>(model: &M, pairs: &DirectionPairs) -> [Vec<f64>; SLOTS] {
-    let mut out: [Vec<f64>; SLOTS] = Default::default();
-    for (&(wi, wo), &w) in pairs.pairs().iter().zip(pairs.weights()) {
-        let root = w.sqrt();
-        let lobes = model.eval_lobes(&Query::far(wi, wo));
-        for (slot, lobe) in out.iter_mut().zip(&lobes) {
-            slot.extend(lobe.iter().map(|v| root * v));
-        }
-    }
-    out
-}
-
-impl PointReference {
-    fn new(point: &ScenePoint, pairs: &DirectionPairs, nodes: usize) -> Result<Self, ParamError> {
-        let rule = FarFieldRule::gauss_legendre(nodes)?;
-        let reference = ChiangFarField::<f64>::with_rule(&point.params, &rule);
-        let lobes = weighted_lobes(&reference, pairs);
-        let norm = (0..lobes[0].len())
-            .map(|i| lobes.iter().map(|l| l[i]).sum::<f64>().powi(2))
-            .sum();
-        Ok(PointReference { lobes, norm })
-    }
 }
 
 /// The inner products of the options' differences from the reference at one point.
@@ -443,31 +461,38 @@ impl Gram {
     }
 }
 
-/// The differences `sqrt(w) (S_option,p - S_ref,p)` of every option at one point, and their
-/// Gram matrix.
+/// The differences of every option's lobe vector from the reference's lobe under `light` at
+/// one point (`sqrt(w) (S_option,p - S_ref,p)` for directional light), and their Gram matrix.
 fn measure_point(
     point: &ScenePoint,
-    pairs: &DirectionPairs,
+    light: &LightMeasure,
     reference_nodes: usize,
     options: &[Vec<LobeOption>; SLOTS],
 ) -> Result<Gram, ParamError> {
-    let reference = PointReference::new(point, pairs, reference_nodes)?;
-    let mut differences: Vec<Vec<f64>> = Vec::new();
+    let rule = FarFieldRule::gauss_legendre(reference_nodes)?;
+    let reference = light.lobes(&ChiangFarField::<f64>::with_rule(&point.params, &rule));
+    let norm = (0..reference[0].len())
+        .map(|i| reference.iter().map(|l| l[i]).sum::<f64>().powi(2))
+        .sum();
     let mut start = [0; SLOTS];
+    let mut flat = Vec::new();
     for (slot, slot_options) in options.iter().enumerate() {
-        start[slot] = differences.len();
-        for option in slot_options {
+        start[slot] = flat.len();
+        flat.extend(slot_options.iter().map(|option| (slot, option)));
+    }
+    let differences: Vec<Vec<f64>> = flat
+        .par_iter()
+        .map(|&(slot, option)| {
             let model = ComposedHair::new(&point.params, alone(slot, option))
                 .unwrap_or_else(|e| unreachable!("the options fit their lobes: {e}"));
-            let values = weighted_lobes(&model, pairs);
-            let d = values[slot]
+            let values = light.lobes(&model);
+            values[slot]
                 .iter()
-                .zip(&reference.lobes[slot])
+                .zip(&reference[slot])
                 .map(|(v, r)| v - r)
-                .collect();
-            differences.push(d);
-        }
-    }
+                .collect()
+        })
+        .collect();
     let size = differences.len();
     let mut products = vec![0.0; size * size];
     for a in 0..size {
@@ -485,7 +510,7 @@ fn measure_point(
         start,
         products,
         size,
-        norm: reference.norm,
+        norm,
     })
 }
 
@@ -502,6 +527,8 @@ pub struct PlannedLobe {
     pub far_field_nodes: Option<usize>,
     /// The lobe table's size, for an option that reads it.
     pub table: Option<LobeTableSize>,
+    /// Gerard's or Nguyen and Donnelly's table's size, for an option that reads one.
+    pub marschner_table: Option<MarschnerTableSize>,
     /// The lobe's own error: `sqrt(sum (S_p - S_ref,p)^2 / sum S_ref^2)`, the worst over the
     /// scene's points (a dropped lobe's is its share of the reference).
     pub error: f64,
@@ -527,6 +554,9 @@ impl PlannedLobe {
                 " ({} x {} x {} table)",
                 t.phi, t.theta_o, t.beta_n
             ));
+        }
+        if let Some(t) = self.marschner_table {
+            text.push_str(&format!(" ({} x {} table)", t.phi, t.theta_d));
         }
         text
     }
@@ -554,6 +584,8 @@ pub struct Plan {
     pub graph: Graph,
     /// The points measured.
     pub points: Vec<ScenePoint>,
+    /// The scene's lights, measured (the error is the worst over them and the points).
+    pub lights: Vec<LightMeasure>,
     /// The combinations evaluated, and how many of them met the budget.
     pub combinations: usize,
     /// Of those, how many met the budget.
@@ -601,8 +633,8 @@ struct Candidate {
 /// called with (done, total) as the points are measured.
 ///
 /// # Errors
-/// [`PlanError::Unsupported`] for `cost = "llvmpipe"` and SH environment lighting (not yet
-/// planned), [`PlanError::Infeasible`] when no composition meets the budget,
+/// [`PlanError::Unsupported`] for `cost = "llvmpipe"` (not yet planned),
+/// [`PlanError::Infeasible`] when no composition meets the budget,
 /// [`PlanError::Param`] for a scene point outside the parameters' domains.
 pub fn plan(
     scene: &Scene,
@@ -618,7 +650,7 @@ pub fn plan(
 /// [`super::catalogue`] lists every option and the Pareto front from the same measurements.
 pub(super) struct SceneMeasurement {
     pub(super) points: Vec<ScenePoint>,
-    pub(super) pairs: DirectionPairs,
+    pub(super) lights: Vec<LightMeasure>,
     pub(super) arguments: Vec<&'static str>,
     pub(super) options: [Vec<LobeOption>; SLOTS],
     pub(super) grams: Vec<Gram>,
@@ -640,18 +672,19 @@ impl SceneMeasurement {
             .into_iter()
             .map(shader_argument)
             .collect();
-        let pairs = DirectionPairs::kronecker(settings.pairs);
-        let options = slot_options(
-            &settings.far_field_nodes,
-            scene.hair.get(HairKey::Eta).is_fixed(),
-        );
+        let lights = LightMeasure::of(scene, settings)?;
+        let options = slot_options(&settings.far_field_nodes, TableUse::of(&scene.hair));
         let done = std::sync::atomic::AtomicUsize::new(0);
-        let grams: Vec<Gram> = points
+        let work: Vec<(&ScenePoint, &LightMeasure)> = points
+            .iter()
+            .flat_map(|point| lights.iter().map(move |light| (point, light)))
+            .collect();
+        let grams: Vec<Gram> = work
             .par_iter()
-            .map(|point| {
-                let gram = measure_point(point, &pairs, settings.reference_nodes, &options);
+            .map(|&(point, light)| {
+                let gram = measure_point(point, light, settings.reference_nodes, &options);
                 let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                progress(n, points.len());
+                progress(n, work.len());
                 gram
             })
             .collect::<Result<_, _>>()?;
@@ -663,7 +696,7 @@ impl SceneMeasurement {
         )?;
         Ok(SceneMeasurement {
             points,
-            pairs,
+            lights,
             arguments,
             options,
             grams,
@@ -719,6 +752,7 @@ impl SceneMeasurement {
             kept: option.factors.is_some() || option.nodes.is_some(),
             far_field_nodes: option.nodes,
             table: option.table,
+            marschner_table: option.marschner_table,
             error: own,
             cost: self.costs.alone[slot][index],
         }
@@ -735,7 +769,7 @@ impl SceneMeasurement {
             self.centre(),
             &self.arguments,
             settings,
-            |c| worst_error(c, &self.points, &self.pairs, settings.reference_nodes),
+            |c| worst_error(c, &self.points, &self.lights, settings.reference_nodes),
         )?;
         let Some((composition, graph, ops, cost, (error, worst))) = chosen else {
             return Err(PlanError::Infeasible {
@@ -762,6 +796,7 @@ impl SceneMeasurement {
             arguments: self.arguments.clone(),
             graph,
             points: self.points.clone(),
+            lights: self.lights.clone(),
             combinations,
             feasible,
         })
@@ -803,12 +838,6 @@ fn check_supported(scene: &Scene) -> Result<(), PlanError> {
             "cost = \"llvmpipe\" is not supported yet: the planner ranks compositions by \
              cost = \"ops\" (weighted traced operation counts); `cargo bench --bench \
              shader_device` measures the published models on llvmpipe",
-        ));
-    }
-    if scene.lights.environment != Environment::None {
-        return Err(PlanError::Unsupported(
-            "environment = \"sh\" is not supported yet: the planner measures directional \
-             lighting (environment = \"none\")",
         ));
     }
     Ok(())
@@ -873,8 +902,12 @@ fn option_costs(
     })
 }
 
-/// The far-field node count and the lobe-table size a partial choice has committed to.
-type Shared = (Option<usize>, Option<LobeTableSize>);
+/// The far-field node count and the table sizes a partial choice has committed to.
+type Shared = (
+    Option<usize>,
+    Option<LobeTableSize>,
+    Option<MarschnerTableSize>,
+);
 
 /// `shared` with `option`'s needs added, or `None` if they conflict with it.
 fn joined(shared: Shared, option: &LobeOption) -> Option<Shared> {
@@ -884,14 +917,18 @@ fn joined(shared: Shared, option: &LobeOption) -> Option<Shared> {
             _ => Some(a.or(b)),
         }
     }
-    Some((join(shared.0, option.nodes)?, join(shared.1, option.table)?))
+    Some((
+        join(shared.0, option.nodes)?,
+        join(shared.1, option.table)?,
+        join(shared.2, option.marschner_table)?,
+    ))
 }
 
 /// Calls `f` with every choice (an option index per slot) whose far-field options share one
-/// node count and whose table options one table size.
+/// node count and whose table options of each kind one table size.
 fn for_each_choice(options: &[Vec<LobeOption>; SLOTS], mut f: impl FnMut([usize; SLOTS])) {
     for (i, oi) in options[0].iter().enumerate() {
-        let Some(si) = joined((None, None), oi) else {
+        let Some(si) = joined((None, None, None), oi) else {
             continue;
         };
         for (j, oj) in options[1].iter().enumerate() {
@@ -939,23 +976,24 @@ fn cheapest_traced(
     Ok(None)
 }
 
-/// The worst error over `points` of the composed model of `composition` as a whole, and the
-/// index of the point.
+/// The worst error over `points` and `lights` of the composed model of `composition` as a
+/// whole, and the index of the point.
 pub fn worst_error(
     composition: Composition,
     points: &[ScenePoint],
-    pairs: &DirectionPairs,
+    lights: &[LightMeasure],
     reference_nodes: usize,
 ) -> Result<(f64, usize), PlanError> {
     let rule = FarFieldRule::gauss_legendre(reference_nodes)?;
-    let mut worst = (0.0, 0);
+    let mut worst = (f64::NEG_INFINITY, 0);
     for (i, point) in points.iter().enumerate() {
         let reference = ChiangFarField::<f64>::with_rule(&point.params, &rule);
-        let samples = ReferenceSamples::new(&reference, pairs.clone());
         let model = ComposedHair::new(&point.params, composition)?;
-        let error = samples.relative_error(&model).full;
-        if error > worst.0 || i == 0 {
-            worst = (error, i);
+        for light in lights {
+            let error = light.relative_error(&model, &light.vector(&reference));
+            if error > worst.0 {
+                worst = (error, i);
+            }
         }
     }
     Ok(worst)

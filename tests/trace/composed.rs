@@ -1,13 +1,13 @@
 //! Trace tests of the composed model (`hairmath::models::ComposedHair`): for compositions
 //! that together use every factor (each longitudinal lobe, the far field's loop, Karis' R,
-//! each distribution, each attenuation, the lobe table, dropped lobes and the residual), the
+//! each distribution, each attenuation, the lobe tables, dropped lobes and the residual), the
 //! traced graph interpreted in `f32` against the `f32` model bit for bit over the uniforms of
 //! several hairs and the hard direction pairs.
 
 use super::*;
 use hairmath::models::{
     Attenuation, Azimuthal, ComposedHair, ComposedUniforms, Composition, Constants, Distribution,
-    LobeFactors, LobeTableSize, Longitudinal,
+    LobeFactors, LobeTableSize, Longitudinal, MarschnerTableSize,
 };
 
 /// (beta_m, beta_n, alpha, eta, sigma_a): brown, smooth and clear with the index near 1,
@@ -37,6 +37,7 @@ pub fn compositions() -> Vec<Composition> {
         theta_o: 4,
         beta_n: 3,
     };
+    let marschner_table = MarschnerTableSize { phi: 8, theta_d: 4 };
     vec![
         Composition {
             r: f(Longitudinal::Deon, Azimuthal::FarField),
@@ -45,6 +46,7 @@ pub fn compositions() -> Vec<Composition> {
             residual: true,
             far_field_nodes: 3,
             table,
+            marschner_table,
         },
         Composition {
             r: f(Longitudinal::SineGaussian, Azimuthal::KarisReflection),
@@ -62,6 +64,7 @@ pub fn compositions() -> Vec<Composition> {
             residual: false,
             far_field_nodes: 1,
             table,
+            marschner_table,
         },
         Composition {
             r: f(
@@ -83,6 +86,7 @@ pub fn compositions() -> Vec<Composition> {
             residual: false,
             far_field_nodes: 1,
             table,
+            marschner_table,
         },
         Composition {
             r: f(Longitudinal::HenyeyGreenstein, Azimuthal::KarisReflection),
@@ -100,6 +104,7 @@ pub fn compositions() -> Vec<Composition> {
             residual: false,
             far_field_nodes: 1,
             table,
+            marschner_table,
         },
         Composition {
             r: None,
@@ -113,6 +118,38 @@ pub fn compositions() -> Vec<Composition> {
             residual: false,
             far_field_nodes: 1,
             table,
+            marschner_table,
+        },
+        Composition {
+            r: f(Longitudinal::DeonReduced, Azimuthal::NguyenDonnellyTable),
+            tt: f(
+                Longitudinal::SineGaussian,
+                Azimuthal::GerardTable {
+                    absorption: Some(Attenuation::Exponential(refit)),
+                },
+            ),
+            trt: f(Longitudinal::DeonReduced, Azimuthal::NguyenDonnellyTable),
+            residual: false,
+            far_field_nodes: 1,
+            table,
+            marschner_table,
+        },
+        Composition {
+            r: f(
+                Longitudinal::ThetaHGaussian,
+                Azimuthal::GerardTable { absorption: None },
+            ),
+            tt: f(Longitudinal::Deon, Azimuthal::NguyenDonnellyTable),
+            trt: f(
+                Longitudinal::Deon,
+                Azimuthal::GerardTable {
+                    absorption: Some(Attenuation::Offset(published)),
+                },
+            ),
+            residual: false,
+            far_field_nodes: 1,
+            table,
+            marschner_table,
         },
     ]
 }

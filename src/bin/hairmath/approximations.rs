@@ -155,6 +155,9 @@ pub fn json(catalogues: &[(&str, Catalogue)]) -> Value {
                     "table": o.table.map(|t| json!({
                         "phi": t.phi, "theta_o": t.theta_o, "beta_n": t.beta_n,
                     })),
+                    "marschner_table": o.marschner_table.map(|t| json!({
+                        "phi": t.phi, "theta_d": t.theta_d,
+                    })),
                     "error": o.error, "cost": o.cost,
                 })).collect::<Vec<_>>(),
                 "front": c.front.iter().map(|p| json!({

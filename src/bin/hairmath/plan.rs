@@ -138,6 +138,12 @@ fn lobe_json(lobe: &PlannedLobe, nodes: usize) -> Value {
         "lobe": lobe.lobe,
         "kept": lobe.kept,
         "factors": factors_json(lobe.factors, nodes),
+        "table": lobe.table.map(|t| json!({
+            "phi": t.phi, "theta_o": t.theta_o, "beta_n": t.beta_n,
+        })),
+        "marschner_table": lobe.marschner_table.map(|t| json!({
+            "phi": t.phi, "theta_d": t.theta_d,
+        })),
         "error": lobe.error,
         "cost": lobe.cost,
     })
