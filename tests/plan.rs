@@ -266,11 +266,13 @@ fn an_unreachable_budget_and_unsupported_scenes_are_errors() {
         Err(PlanError::Infeasible { best_error, .. }) => assert!(best_error > 1e-9),
         other => panic!("expected Infeasible, got {other:?}"),
     }
-    let llvmpipe = scene(
-        "budget = 0.1\ncost = \"llvmpipe\"\n[hair]\neumelanin = 1.0\nbeta_m = 0.3\nbeta_n = 0.3\n",
+    // An SH environment is not planned yet (`cost = "llvmpipe"` is: tests/plan_llvmpipe.rs).
+    let sh = scene(
+        "budget = 0.1\n[hair]\neumelanin = 1.0\nbeta_m = 0.3\nbeta_n = 0.3\n\
+         [lights]\nenvironment = \"sh\"\n",
     );
     assert!(matches!(
-        plan(&llvmpipe, &settings, &|_, _| {}),
+        plan(&sh, &settings, &|_, _| {}),
         Err(PlanError::Unsupported(_))
     ));
 }
