@@ -154,8 +154,8 @@ impl Default for PlanSettings {
 
 impl PlanSettings {
     /// Fewer pairs (2^9), no interior points, far fields of 4 and 16 nodes, 16 traced
-    /// candidates and 6 timed over 2^14 rows: for tests and `hairmath report --quick` (the
-    /// errors become rough).
+    /// candidates and 6 timed: for tests and `hairmath report --quick` (the errors become
+    /// rough).
     pub fn quick() -> Self {
         PlanSettings {
             pairs: 1 << 9,
@@ -163,7 +163,6 @@ impl PlanSettings {
             far_field_nodes: vec![4, 16],
             traced_candidates: 16,
             device_candidates: 6,
-            device_rows: 1 << 14,
             ..PlanSettings::default()
         }
     }
