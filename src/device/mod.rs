@@ -43,7 +43,7 @@
 //! cores: llvmpipe runs on the CPU).
 
 use std::borrow::Cow;
-use std::sync::{Mutex, OnceLock};
+use std::sync::{Mutex, MutexGuard, OnceLock};
 use std::time::{Duration, Instant};
 
 use wgpu::util::DeviceExt;
@@ -241,7 +241,8 @@ impl Device {
         }
     }
 
-    /// Compiles the module, uploads the queries (and textures) and builds the bind groups.
+    /// Takes the device's lock (held until the guard returned is dropped), compiles the
+    /// module, uploads the queries (and textures) and builds the bind groups.
     fn prepare(
         &self,
         wgsl: &str,
@@ -249,7 +250,11 @@ impl Device {
         queries: &[f32],
         stride: usize,
         textures: &[GpuTexture],
-    ) -> Result<Prepared, DeviceError> {
+    ) -> Result<(MutexGuard<'_, ()>, Prepared), DeviceError> {
+        let guard = self
+            .lock
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
         let input = |message: String| Err(DeviceError::Input(message));
         if stride == 0 {
             return input("stride must be at least 1".into());
@@ -286,7 +291,7 @@ impl Device {
             }
         }
 
-        self.scoped(|| {
+        let prepared = self.scoped(|| {
             let device = &self.device;
             let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("hairmath shader"),
@@ -397,7 +402,8 @@ impl Device {
                 rows,
                 workgroups,
             }
-        })
+        })?;
+        Ok((guard, prepared))
     }
 
     /// Creates and fills one Rgba32Float texture; returns its view.
@@ -479,11 +485,7 @@ impl Device {
         stride: usize,
         textures: &[GpuTexture],
     ) -> Result<Vec<f32>, DeviceError> {
-        let _guard = self
-            .lock
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
-        let prepared = self.prepare(wgsl, entry, queries, stride, textures)?;
+        let (_guard, prepared) = self.prepare(wgsl, entry, queries, stride, textures)?;
         let bytes = u64::from(prepared.rows) * 3 * 4;
         let (staging, commands) = self.scoped(|| {
             let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
@@ -545,11 +547,7 @@ impl Device {
                 "at least one timed repetition is needed".into(),
             ));
         }
-        let _guard = self
-            .lock
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
-        let prepared = self.prepare(wgsl, entry, queries, stride, textures)?;
+        let (_guard, prepared) = self.prepare(wgsl, entry, queries, stride, textures)?;
         let record = || {
             self.scoped(|| {
                 let mut encoder = self
