@@ -737,8 +737,9 @@ pub(super) struct SceneMeasurement {
     pub(super) options: [Vec<LobeOption>; SLOTS],
     pub(super) grams: Vec<Gram>,
     pub(super) costs: OptionCosts,
-    /// The scene's cost measure, and for `cost = "llvmpipe"` the device.
+    /// The scene's cost measure.
     measure: CostMeasure,
+    /// For `cost = "llvmpipe"`, the device the candidates are timed on.
     device: Option<&'static Device>,
 }
 
