@@ -12,11 +12,8 @@
 //!
 //! Run: `cargo bench --bench shader_device`.
 
-#[path = "../tests/shader/gpu.rs"]
-#[allow(dead_code)]
-mod gpu;
-
 use criterion::{criterion_group, Criterion, Throughput};
+use hairmath::device::{textures_of, AdapterChoice, Device, GpuTexture};
 use hairmath::diagnostics::DirectionPairs;
 use hairmath::models::gerard_sh::SHADE_FUNCTION;
 use hairmath::params::HairParams;
@@ -52,10 +49,15 @@ fn rows(stride: usize) -> Vec<f32> {
 }
 
 fn device_cost(c: &mut Criterion) {
-    let Some(device) = gpu::device() else {
-        eprintln!("no WebGPU adapter: install mesa-vulkan-drivers");
-        return;
+    let device = match Device::new(AdapterChoice::HighPerformance) {
+        Ok(device) => device,
+        Err(e) => {
+            eprintln!("no WebGPU adapter ({e}): install mesa-vulkan-drivers");
+            return;
+        }
     };
+    eprintln!("timing on {}", device.describe());
+    let device = &device;
     let mut group = c.benchmark_group("shader_device");
     group.sample_size(10);
     group.warm_up_time(Duration::from_millis(500));
@@ -66,7 +68,7 @@ fn device_cost(c: &mut Criterion) {
         let stride = compute.stride().expect("a stride");
         let wgsl = compute.wgsl().expect("WGSL");
         let queries = rows(stride);
-        let textures = gpu::textures_of(&shader.module);
+        let textures = textures_of(&shader.module);
         group.bench_function(shader.model, |b| {
             b.iter_custom(|iters| dispatch_time(device, &wgsl, &queries, stride, &textures, iters))
         });
@@ -78,7 +80,7 @@ fn device_cost(c: &mut Criterion) {
 /// Gerard's SH shading ([`hairmath::render::gerard_graph`]) in the configurations of the
 /// README's table, over rows of (tangent, wo, light, light radiance, transmittance)
 /// ([`gerard_rows`]), timed per 2^20 rows, so the times compare with Kajiya-Kay's above.
-fn gerard_cost(device: &gpu::Device) {
+fn gerard_cost(device: &Device) {
     let mut c = Criterion::default().configure_from_args();
     let mut group = c.benchmark_group("gerard_sh_device");
     group.sample_size(10);
@@ -116,7 +118,7 @@ fn gerard_cost(device: &gpu::Device) {
             .and_then(|m| m.wgsl())
             .expect("WGSL");
         let queries = gerard_rows(stride);
-        let textures = gpu::textures_of(&module);
+        let textures = textures_of(&module);
         let name = format!("phase_l{phase_lmax}_v_l{v_lmax}_{}", absorption.name());
         group.bench_function(name, |b| {
             b.iter_custom(|iters| dispatch_time(device, &wgsl, &queries, stride, &textures, iters))
@@ -127,11 +129,11 @@ fn gerard_cost(device: &gpu::Device) {
 
 /// The time of `iters` dispatches of `wgsl`'s `hair_main` over `queries` ([`ROWS`] rows).
 fn dispatch_time(
-    device: &gpu::Device,
+    device: &Device,
     wgsl: &str,
     queries: &[f32],
     stride: usize,
-    textures: &[gpu::GpuTexture],
+    textures: &[GpuTexture],
     iters: u64,
 ) -> Duration {
     let per_eval = device

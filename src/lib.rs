@@ -5,6 +5,8 @@ pub mod absorption;
 pub mod azimuthal;
 pub mod bcsdf;
 pub mod csv;
+#[cfg(feature = "gpu")]
+pub mod device;
 pub mod diagnostics;
 pub mod error;
 pub mod fit;

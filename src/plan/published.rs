@@ -22,7 +22,8 @@ pub struct PublishedComparison {
     pub cost: f64,
     /// Its operation counts.
     pub ops: OpCounts,
-    /// Whether the plan costs no more and has a lower error.
+    /// Whether the plan costs no more by weighted operations ([`super::Plan::ops_cost`],
+    /// whatever the scene's cost measure) and has a lower error.
     pub dominated: bool,
 }
 
@@ -67,7 +68,7 @@ pub fn compare_published(
             error,
             cost,
             ops,
-            dominated: plan.cost <= cost && plan.error < error,
+            dominated: plan.ops_cost <= cost && plan.error < error,
         });
     }
     Ok(out)

@@ -32,7 +32,10 @@ use crate::params::{AzimuthalRoughness, CuticleTilt, LongitudinalRoughness, Refr
 pub enum CostMeasure {
     /// The weighted counts of the shader's traced operations (`cost = "ops"`, the default).
     Ops,
-    /// The shader's time on Mesa's llvmpipe software rasteriser (`cost = "llvmpipe"`).
+    /// The shader's measured time on Mesa's llvmpipe, the software Vulkan device
+    /// (`cost = "llvmpipe"`): the fastest measured of the cheapest compositions by weighted
+    /// operations that meet the budget ([`super::PlanSettings::device_candidates`]; the
+    /// module documentation of [`super::plan`]).
     Llvmpipe,
 }
 

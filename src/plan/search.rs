@@ -31,6 +31,24 @@
 //! once) and the [`PlanSettings::traced_candidates`] first are traced; the cheapest of them by
 //! traced cost is the plan, and its error is measured once more as a whole
 //! ([`LightMeasure::relative_error`] of the composed model itself, [`worst_error`]).
+//!
+//! # `cost = "llvmpipe"`
+//!
+//! The time of a shader on a device cannot be measured for the million or so combinations, so
+//! the search above ranks them by weighted operations as for `cost = "ops"`, and its
+//! [`PlanSettings::device_candidates`] cheapest by traced cost whose error measured as a whole
+//! is within the budget (at most [`PlanSettings::traced_candidates`] of them) are each emitted
+//! as the WGSL compute module `hairmath plan --out` writes ([`plan_shader`], the scene's
+//! non-fixed parameters as arguments) and timed on Mesa's llvmpipe
+//! ([`crate::device::llvmpipe`]): [`PlanSettings::device_rows`] rows of direction pairs (a
+//! Kronecker set) with the arguments of the scene's hairs in turn, the median of
+//! [`PlanSettings::device_repetitions`] dispatches after a warm-up
+//! ([`crate::device::Device::time_per_eval`]). The fastest measured is the plan, and its cost
+//! is its time in nanoseconds per evaluation ([`Plan::timing`] keeps every candidate timed).
+//! This is the fastest *measured* among the cheapest by operations that meet the budget, not
+//! an exhaustive search over times; the times are llvmpipe's on the machine that planned (a
+//! CPU rasteriser, sharing the cores with whatever else runs), and differ from run to run by
+//! its noise, so candidates within that noise of each other may swap places.
 
 use super::measure::LightMeasure;
 use super::scene::{CostMeasure, HairKey, Scene, SceneHair};
@@ -39,7 +57,8 @@ use crate::bcsdf::{
     AbsorptionInput, ChiangFarField, FarFieldRule, InputValue, InputValues, ShaderInputError,
     ShaderInputs,
 };
-use crate::diagnostics::{EnvironmentRule, OpCounts};
+use crate::device::{llvmpipe, textures_of, Device, DeviceError};
+use crate::diagnostics::{DirectionPairs, EnvironmentRule, OpCounts};
 use crate::error::ParamError;
 use crate::models::{
     Attenuation, Azimuthal, ComposedHair, ComposedLobe, Composition, CompositionError, Constants,
@@ -48,6 +67,7 @@ use crate::models::{
 use crate::params::{HairParams, HairValues};
 use crate::quadrature::kronecker;
 use crate::real::Graph;
+use crate::shader::{graph_shader, ModelShader, ShaderError};
 use rayon::prelude::*;
 
 /// How much each kind of traced operation costs, in units of an addition: the planner's
@@ -111,11 +131,21 @@ pub struct PlanSettings {
     pub weights: OpWeights,
     /// The quadrature of an SH environment's error ([`crate::diagnostics::ShEnvironment`]).
     pub environment: EnvironmentRule,
+    /// For `cost = "llvmpipe"`: how many of the cheapest compositions by traced cost that meet
+    /// the budget are timed on the device (the module documentation).
+    pub device_candidates: usize,
+    /// For `cost = "llvmpipe"`: the rows of one timed dispatch.
+    pub device_rows: usize,
+    /// For `cost = "llvmpipe"`: the timed dispatches of each candidate, whose median is its
+    /// time.
+    pub device_repetitions: usize,
 }
 
 impl Default for PlanSettings {
     /// 2^12 pairs, a 64-node reference, 4 interior points, far fields of 4 to 64 nodes, 64
-    /// traced candidates, [`OpWeights::DEFAULT`], [`EnvironmentRule::default`].
+    /// traced candidates, [`OpWeights::DEFAULT`], [`EnvironmentRule::default`]; for
+    /// `cost = "llvmpipe"` 8 candidates timed, each over 2^16 rows, the median of 5
+    /// dispatches.
     fn default() -> Self {
         PlanSettings {
             pairs: 1 << 12,
@@ -125,19 +155,24 @@ impl Default for PlanSettings {
             traced_candidates: 64,
             weights: OpWeights::DEFAULT,
             environment: EnvironmentRule::default(),
+            device_candidates: 8,
+            device_rows: 1 << 16,
+            device_repetitions: 5,
         }
     }
 }
 
 impl PlanSettings {
-    /// Fewer pairs (2^9), no interior points, far fields of 4 and 16 nodes and 16 traced
-    /// candidates: for tests and `hairmath report --quick` (the errors become rough).
+    /// Fewer pairs (2^9), no interior points, far fields of 4 and 16 nodes, 16 traced
+    /// candidates and 6 timed: for tests and `hairmath report --quick` (the errors become
+    /// rough).
     pub fn quick() -> Self {
         PlanSettings {
             pairs: 1 << 9,
             interior_points: 0,
             far_field_nodes: vec![4, 16],
             traced_candidates: 16,
+            device_candidates: 6,
             ..PlanSettings::default()
         }
     }
@@ -147,9 +182,6 @@ impl PlanSettings {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum PlanError {
-    /// A part of the scene description the planner does not support yet.
-    #[error("{0}")]
-    Unsupported(&'static str),
     /// No composition meets the budget.
     #[error(
         "no composition meets the budget {budget}: the most accurate one measured has E = \
@@ -172,6 +204,19 @@ pub enum PlanError {
     /// A shader argument the composed model does not take.
     #[error(transparent)]
     Argument(#[from] ShaderInputError),
+    /// `cost = "llvmpipe"` on a machine without Mesa's llvmpipe.
+    #[error(
+        "cost = \"llvmpipe\" times the shaders on Mesa's llvmpipe, and no llvmpipe Vulkan \
+         device was found ({0}); Debian's mesa-vulkan-drivers provides it (apt-get install \
+         mesa-vulkan-drivers)"
+    )]
+    NoDevice(DeviceError),
+    /// A candidate's shader that llvmpipe could not run.
+    #[error("timing a candidate on llvmpipe: {0}")]
+    Device(#[from] DeviceError),
+    /// A candidate whose shader could not be emitted.
+    #[error(transparent)]
+    Shader(#[from] ShaderError),
 }
 
 /// One hair of the scene: the values of its parameters (as the scene file gives them,
@@ -572,8 +617,16 @@ pub struct Plan {
     pub error: f64,
     /// The point with that error.
     pub worst_point: ScenePoint,
-    /// Its weighted traced cost ([`OpWeights`]).
+    /// Its cost in the scene's measure ([`Plan::measure`]): the weighted traced cost
+    /// ([`OpWeights`]) for `cost = "ops"`; for `cost = "llvmpipe"` its measured time in
+    /// nanoseconds per evaluation on llvmpipe, the fastest of [`Plan::timing`]'s candidates
+    /// (the module documentation).
     pub cost: f64,
+    /// What [`Plan::cost`] measures: the scene's `cost`.
+    pub measure: CostMeasure,
+    /// Its weighted traced cost ([`OpWeights`]) whatever the measure (equal to
+    /// [`Plan::cost`] for `cost = "ops"`).
+    pub ops_cost: f64,
     /// Its traced operation counts.
     pub ops: OpCounts,
     /// The choice per lobe (R, TT, TRT, residual).
@@ -590,6 +643,49 @@ pub struct Plan {
     pub combinations: usize,
     /// Of those, how many met the budget.
     pub feasible: usize,
+    /// For `cost = "llvmpipe"`, the candidates timed on the device; `None` for `cost = "ops"`.
+    pub timing: Option<DeviceTiming>,
+}
+
+/// A composition timed on llvmpipe for `cost = "llvmpipe"`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimedCandidate {
+    /// The composition.
+    pub composition: Composition,
+    /// Its weighted traced cost ([`OpWeights`]).
+    pub ops_cost: f64,
+    /// Its error E measured as a whole, the worst over the scene's points (within the budget).
+    pub error: f64,
+    /// Its measured time on llvmpipe, in nanoseconds per evaluation.
+    pub ns_per_eval: f64,
+}
+
+/// The timings of a `cost = "llvmpipe"` plan (the module documentation): the candidates in
+/// increasing weighted traced cost, the plan the fastest of them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DeviceTiming {
+    /// The device the candidates ran on ([`Device::describe`]).
+    pub adapter: String,
+    /// Rows per timed dispatch.
+    pub rows: usize,
+    /// Timed dispatches per candidate (the median is its time).
+    pub repetitions: usize,
+    /// The candidates timed: the [`PlanSettings::device_candidates`] cheapest by weighted
+    /// traced cost whose error measured as a whole is within the budget, in that order.
+    pub candidates: Vec<TimedCandidate>,
+}
+
+impl DeviceTiming {
+    /// The index of the fastest candidate (the first of equal times; 0 when there are none).
+    pub fn fastest(&self) -> usize {
+        let mut best = 0;
+        for (i, c) in self.candidates.iter().enumerate() {
+            if c.ns_per_eval < self.candidates[best].ns_per_eval {
+                best = i;
+            }
+        }
+        best
+    }
 }
 
 /// The shader of `composition` for a scene's hair: `hair_bcsdf` with the parameters
@@ -607,6 +703,21 @@ pub fn trace_composition(
     let model = ComposedHair::new(&point.params, composition)?;
     let inputs = ShaderInputs::new(&model, &point.inputs(), arguments)?;
     Ok(inputs.trace())
+}
+
+/// The shader module of a plan's traced `hair_bcsdf` (`graph`, the composition's
+/// [`trace_composition`]), as `hairmath plan --out` writes it and `cost = "llvmpipe"` times
+/// it; `summary` says what it evaluates in its comment.
+///
+/// # Errors
+/// [`ShaderError`] if the emitter fails.
+pub fn plan_shader(summary: &str, graph: Graph) -> Result<ModelShader, ShaderError> {
+    graph_shader(
+        "plan",
+        summary,
+        "hairmath::models::ComposedHair, chosen by hairmath::plan::plan",
+        graph,
+    )
 }
 
 /// [`trace_composition`] of a composition the planner built, with its counts and cost.
@@ -633,9 +744,10 @@ struct Candidate {
 /// called with (done, total) as the points are measured.
 ///
 /// # Errors
-/// [`PlanError::Unsupported`] for `cost = "llvmpipe"` (not yet planned),
-/// [`PlanError::Infeasible`] when no composition meets the budget,
-/// [`PlanError::Param`] for a scene point outside the parameters' domains.
+/// [`PlanError::Infeasible`] when no composition meets the budget, [`PlanError::Param`] for a
+/// scene point outside the parameters' domains; for `cost = "llvmpipe"`,
+/// [`PlanError::NoDevice`] on a machine without llvmpipe and [`PlanError::Device`] or
+/// [`PlanError::Shader`] if a candidate's shader cannot be emitted or run.
 pub fn plan(
     scene: &Scene,
     settings: &PlanSettings,
@@ -655,6 +767,10 @@ pub(super) struct SceneMeasurement {
     pub(super) options: [Vec<LobeOption>; SLOTS],
     pub(super) grams: Vec<Gram>,
     pub(super) costs: OptionCosts,
+    /// The scene's cost measure.
+    measure: CostMeasure,
+    /// For `cost = "llvmpipe"`, the device the candidates are timed on.
+    device: Option<&'static Device>,
 }
 
 impl SceneMeasurement {
@@ -664,7 +780,11 @@ impl SceneMeasurement {
         settings: &PlanSettings,
         progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Self, PlanError> {
-        check_supported(scene)?;
+        // Before the measurements: a missing device is reported at once.
+        let device = match scene.cost {
+            CostMeasure::Ops => None,
+            CostMeasure::Llvmpipe => Some(llvmpipe().map_err(PlanError::NoDevice)?),
+        };
         let points = scene_points(&scene.hair, settings.interior_points)?;
         let arguments: Vec<&'static str> = scene
             .hair
@@ -701,6 +821,8 @@ impl SceneMeasurement {
             options,
             grams,
             costs,
+            measure: scene.cost,
+            device,
         })
     }
 
@@ -762,22 +884,38 @@ impl SceneMeasurement {
     pub(super) fn plan(&self, budget: f64, settings: &PlanSettings) -> Result<Plan, PlanError> {
         let (candidates, combinations, best) = self.combinations_within(budget);
         let feasible = candidates.len();
-        let chosen = cheapest_traced(
-            budget,
-            &candidates,
-            &self.options,
-            self.centre(),
-            &self.arguments,
-            settings,
-            |c| worst_error(c, &self.points, &self.lights, settings.reference_nodes),
-        )?;
-        let Some((composition, graph, ops, cost, (error, worst))) = chosen else {
+        let wanted = match self.device {
+            None => 1,
+            Some(_) => settings.device_candidates.max(1),
+        };
+        let mut ranked = self.cheapest_traced(budget, &candidates, settings, wanted)?;
+        if ranked.is_empty() {
             return Err(PlanError::Infeasible {
                 budget,
                 best_error: best.1,
                 best: self.composition(best.0).describe(),
             });
+        }
+        let (chosen, cost, timing) = match self.device {
+            None => (0, ranked[0].cost, None),
+            Some(device) => {
+                let timing = self.time(device, &ranked, settings)?;
+                let fastest = timing.fastest();
+                (
+                    fastest,
+                    timing.candidates[fastest].ns_per_eval,
+                    Some(timing),
+                )
+            }
         };
+        let Measured {
+            composition,
+            graph,
+            ops,
+            cost: ops_cost,
+            error,
+            worst,
+        } = ranked.swap_remove(chosen);
         let choice = candidates
             .iter()
             .find(|c| self.composition(c.choice) == composition)
@@ -791,6 +929,8 @@ impl SceneMeasurement {
             error,
             worst_point: self.points[worst].clone(),
             cost,
+            measure: self.measure,
+            ops_cost,
             ops,
             lobes,
             arguments: self.arguments.clone(),
@@ -799,6 +939,110 @@ impl SceneMeasurement {
             lights: self.lights.clone(),
             combinations,
             feasible,
+            timing,
+        })
+    }
+
+    /// Of the first [`PlanSettings::traced_candidates`] candidates, the `wanted` cheapest by
+    /// traced cost whose error measured as a whole ([`worst_error`]) is within `budget`,
+    /// cheapest first.
+    fn cheapest_traced(
+        &self,
+        budget: f64,
+        candidates: &[Candidate],
+        settings: &PlanSettings,
+        wanted: usize,
+    ) -> Result<Vec<Measured>, PlanError> {
+        let mut traced_candidates: Vec<(Composition, Graph, OpCounts, f64, f64)> = Vec::new();
+        for candidate in candidates.iter().take(settings.traced_candidates.max(1)) {
+            let composition = self.composition(candidate.choice);
+            let (graph, ops, cost) = traced(
+                composition,
+                self.centre(),
+                &self.arguments,
+                &settings.weights,
+            )?;
+            traced_candidates.push((composition, graph, ops, cost, candidate.error));
+        }
+        traced_candidates.sort_by(|a, b| a.3.total_cmp(&b.3).then(a.4.total_cmp(&b.4)));
+        let mut within = Vec::new();
+        for (composition, graph, ops, cost, _) in traced_candidates {
+            if within.len() == wanted {
+                break;
+            }
+            let (error, worst) = worst_error(
+                composition,
+                &self.points,
+                &self.lights,
+                settings.reference_nodes,
+            )?;
+            if error <= budget {
+                within.push(Measured {
+                    composition,
+                    graph,
+                    ops,
+                    cost,
+                    error,
+                    worst,
+                });
+            }
+        }
+        Ok(within)
+    }
+
+    /// Each of `ranked` timed on `device` (the module documentation).
+    fn time(
+        &self,
+        device: &Device,
+        ranked: &[Measured],
+        settings: &PlanSettings,
+    ) -> Result<DeviceTiming, PlanError> {
+        let pairs = DirectionPairs::kronecker(settings.device_rows);
+        let arguments: Vec<HairKey> = self
+            .arguments
+            .iter()
+            .filter_map(|&name| {
+                HairKey::ALL
+                    .into_iter()
+                    .find(|&k| shader_argument(k) == name)
+            })
+            .collect();
+        let stride = 6 + arguments.len();
+        let mut rows = Vec::with_capacity(pairs.len() * stride);
+        for (k, (wi, wo)) in pairs.pairs().iter().enumerate() {
+            let point = &self.points[k % self.points.len()];
+            rows.extend([wi.x, wi.y, wi.z, wo.x, wo.y, wo.z].map(|x| x as f32));
+            rows.extend(
+                arguments
+                    .iter()
+                    .map(|&key| argument_value(point, key) as f32),
+            );
+        }
+        let mut candidates = Vec::with_capacity(ranked.len());
+        for m in ranked {
+            let shader = plan_shader(&m.composition.describe(), m.graph.clone())?;
+            let wgsl = shader.compute()?.wgsl()?;
+            let textures = textures_of(&shader.module);
+            let seconds = device.time_per_eval(
+                &wgsl,
+                "hair_main",
+                &rows,
+                stride,
+                &textures,
+                settings.device_repetitions,
+            )?;
+            candidates.push(TimedCandidate {
+                composition: m.composition,
+                ops_cost: m.cost,
+                error: m.error,
+                ns_per_eval: seconds * 1e9,
+            });
+        }
+        Ok(DeviceTiming {
+            adapter: device.describe(),
+            rows: settings.device_rows,
+            repetitions: settings.device_repetitions,
+            candidates,
         })
     }
 
@@ -831,16 +1075,17 @@ impl SceneMeasurement {
     }
 }
 
-/// The parts of a scene the planner supports.
-fn check_supported(scene: &Scene) -> Result<(), PlanError> {
-    if scene.cost == CostMeasure::Llvmpipe {
-        return Err(PlanError::Unsupported(
-            "cost = \"llvmpipe\" is not supported yet: the planner ranks compositions by \
-             cost = \"ops\" (weighted traced operation counts); `cargo bench --bench \
-             shader_device` measures the published models on llvmpipe",
-        ));
+/// The value of the shader argument of `key` at `point` (`alpha` in radians).
+fn argument_value(point: &ScenePoint, key: HairKey) -> f64 {
+    let value = point
+        .values
+        .iter()
+        .find(|(k, _)| *k == key)
+        .map_or(0.0, |v| v.1);
+    match key {
+        HairKey::AlphaDeg => value.to_radians(),
+        _ => value,
     }
-    Ok(())
 }
 
 /// The options of one choice (indices per slot).
@@ -945,35 +1190,15 @@ fn for_each_choice(options: &[Vec<LobeOption>; SLOTS], mut f: impl FnMut([usize;
     }
 }
 
-/// The measured composition: its traced graph, counts and cost, and `(worst error, worst
-/// point)`.
-type Measured = (Composition, Graph, OpCounts, f64, (f64, usize));
-
-/// Of the first [`PlanSettings::traced_candidates`] candidates, the cheapest by traced cost
-/// whose error measured as a whole (`measure`) is within `budget`.
-fn cheapest_traced(
-    budget: f64,
-    candidates: &[Candidate],
-    options: &[Vec<LobeOption>; SLOTS],
-    point: &ScenePoint,
-    arguments: &[&str],
-    settings: &PlanSettings,
-    measure: impl Fn(Composition) -> Result<(f64, usize), PlanError>,
-) -> Result<Option<Measured>, PlanError> {
-    let mut traced_candidates: Vec<(Composition, Graph, OpCounts, f64, f64)> = Vec::new();
-    for candidate in candidates.iter().take(settings.traced_candidates.max(1)) {
-        let composition = compose(choice_options(options, candidate.choice));
-        let (graph, ops, cost) = traced(composition, point, arguments, &settings.weights)?;
-        traced_candidates.push((composition, graph, ops, cost, candidate.error));
-    }
-    traced_candidates.sort_by(|a, b| a.3.total_cmp(&b.3).then(a.4.total_cmp(&b.4)));
-    for (composition, graph, ops, cost, _) in traced_candidates {
-        let whole = measure(composition)?;
-        if whole.0 <= budget {
-            return Ok(Some((composition, graph, ops, cost, whole)));
-        }
-    }
-    Ok(None)
+/// A composition measured as a whole: its traced graph, counts and weighted cost, its worst
+/// error and the index of the point where it is.
+struct Measured {
+    composition: Composition,
+    graph: Graph,
+    ops: OpCounts,
+    cost: f64,
+    error: f64,
+    worst: usize,
 }
 
 /// The worst error over `points` and `lights` of the composed model of `composition` as a

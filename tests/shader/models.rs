@@ -96,13 +96,15 @@ fn compare_on_device(shader: &ModelShader, queries: &[f32]) -> Result<Measured, 
     let compute = shader.compute().map_err(|e| e.to_string())?;
     let stride = compute.stride().expect("the compute form has a stride");
     let wgsl = compute.wgsl().map_err(|e| e.to_string())?;
-    let gpu = device.run(
-        &wgsl,
-        "hair_main",
-        queries,
-        stride,
-        &textures_of(&shader.module),
-    )?;
+    let gpu = device
+        .run(
+            &wgsl,
+            "hair_main",
+            queries,
+            stride,
+            &textures_of(&shader.module),
+        )
+        .map_err(|e| e.to_string())?;
     let rules = AccuracyRules::wgsl_on_llvmpipe();
     let mut measured = Measured {
         rows: queries.len() / stride,

@@ -9,9 +9,10 @@ use clap::Args;
 use hairmath::diagnostics::OpCounts;
 use hairmath::models::{Azimuthal, LobeFactors};
 use hairmath::plan::{
-    compare_published, plan, Plan, PlanSettings, PlannedLobe, PublishedComparison, Scene,
+    compare_published, plan, plan_shader, CostMeasure, DeviceTiming, Plan, PlanSettings,
+    PlannedLobe, PublishedComparison, Scene,
 };
-use hairmath::shader::{graph_shader, table_files, CommittedFile, Language, ModelShader};
+use hairmath::shader::{table_files, CommittedFile, Language, ModelShader};
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -58,14 +59,12 @@ pub fn run(args: &PlanArgs) -> Result<(), CliError> {
     let published =
         compare_published(&plan, &settings).map_err(|e| CliError::Plan(e.to_string()))?;
     let language = Language::from_name(&args.lang).expect("clap checks the name");
-    let shader = graph_shader(
-        "plan",
+    let shader = plan_shader(
         &format!(
             "the scene plan of {}: {}",
             args.scene.display(),
             plan.composition.describe()
         ),
-        "hairmath::models::ComposedHair, chosen by hairmath::plan::plan",
         plan.graph.clone(),
     )?;
     let file = format!("hair.{}", extension(language));
@@ -156,7 +155,35 @@ fn ops_json(o: &OpCounts) -> Value {
     })
 }
 
-/// The plan as JSON: `choices`, `error`, `cost`, `shader` and the measurement's context.
+/// The name of a cost measure in the scene file and the JSON.
+fn measure_name(measure: CostMeasure) -> &'static str {
+    match measure {
+        CostMeasure::Ops => "ops",
+        CostMeasure::Llvmpipe => "llvmpipe",
+    }
+}
+
+/// The timed candidates of a `cost = "llvmpipe"` plan as JSON (null for `cost = "ops"`).
+fn timing_json(timing: Option<&DeviceTiming>) -> Value {
+    let Some(t) = timing else {
+        return Value::Null;
+    };
+    json!({
+        "adapter": t.adapter,
+        "rows": t.rows,
+        "repetitions": t.repetitions,
+        "fastest": t.fastest(),
+        "candidates": t.candidates.iter().map(|c| json!({
+            "composition": c.composition.describe(),
+            "ops_cost": c.ops_cost,
+            "error": c.error,
+            "ns_per_eval": c.ns_per_eval,
+        })).collect::<Vec<_>>(),
+    })
+}
+
+/// The plan as JSON: `choices`, `error`, `cost` (in the unit of `cost_measure`), `shader` and
+/// the measurement's context.
 fn plan_json(
     scene: &Scene,
     plan: &Plan,
@@ -183,6 +210,12 @@ fn plan_json(
         "error": plan.error,
         "worst_point": point,
         "cost": plan.cost,
+        "cost_measure": measure_name(plan.measure),
+        "cost_unit": match plan.measure {
+            CostMeasure::Ops => "weighted operations",
+            CostMeasure::Llvmpipe => "nanoseconds per evaluation on llvmpipe",
+        },
+        "ops_cost": plan.ops_cost,
         "ops": ops_json(&plan.ops),
         "shader": {
             "file": file,
@@ -197,6 +230,7 @@ fn plan_json(
         "points": plan.points.len(),
         "combinations": plan.combinations,
         "feasible": plan.feasible,
+        "device": timing_json(plan.timing.as_ref()),
     })
 }
 
@@ -226,12 +260,37 @@ fn plan_text(scene: &Scene, plan: &Plan, published: &[PublishedComparison]) -> S
         .map(|(k, v)| format!("{} = {v}", k.name()))
         .collect();
     let o = &plan.ops;
+    if let Some(t) = &plan.timing {
+        s += &format!(
+            "cost = {:.2} ns per evaluation on llvmpipe, the fastest measured of the {} cheapest \
+             by weighted operations within the budget (median of {} dispatches of {} rows on \
+             {}):\n| composition | weighted ops | E | ns per evaluation |\n| --- | ---: | ---: | ---: |\n",
+            plan.cost,
+            t.candidates.len(),
+            t.repetitions,
+            t.rows,
+            t.adapter
+        );
+        for c in &t.candidates {
+            s += &format!(
+                "| {} | {} | {:.4} | {:.2} |\n",
+                c.composition.describe(),
+                c.ops_cost,
+                c.error,
+                c.ns_per_eval
+            );
+        }
+    }
+    let label = match plan.measure {
+        CostMeasure::Ops => "cost",
+        CostMeasure::Llvmpipe => "weighted operations",
+    };
     s += &format!(
-        "error E = {:.4e} (worst at {})\ncost = {} (add+mul {}, div {}, sqrt {}, transc. {}, \
+        "error E = {:.4e} (worst at {})\n{label} = {} (add+mul {}, div {}, sqrt {}, transc. {}, \
          select {}, fetch {})\nshader: hair_bcsdf(wi, wo{})\n",
         plan.error,
         worst.join(", "),
-        plan.cost,
+        plan.ops_cost,
         o.add_mul,
         o.div,
         o.sqrt,
