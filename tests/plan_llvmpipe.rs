@@ -12,8 +12,8 @@ use hairmath::device::DeviceError;
 use hairmath::diagnostics::{DirectionPairs, OpCounts, ReferenceSamples};
 use hairmath::models::ComposedHair;
 use hairmath::plan::{
-    example_scenes, plan, scene_points, trace_composition, worst_error, CostMeasure, Plan,
-    PlanError, PlanSettings, Scene,
+    example_scenes, plan, scene_points, trace_composition, worst_error, CostMeasure, LightMeasure,
+    Plan, PlanError, PlanSettings, Scene,
 };
 
 /// Whether the environment variable `CI` is `true`: a missing device is a failure.
@@ -108,8 +108,10 @@ fn the_llvmpipe_plan_is_the_fastest_timed_of_the_cheapest_by_ops_within_the_budg
     assert_eq!(timing.candidates.len(), settings.device_candidates);
     for c in &timing.candidates {
         assert!(c.error <= scene.budget, "{c:?}");
-        let pairs = DirectionPairs::kronecker(settings.pairs);
-        let (error, _) = worst_error(c.composition, &points, &pairs, settings.reference_nodes)
+        let lights = [LightMeasure::Directional(DirectionPairs::kronecker(
+            settings.pairs,
+        ))];
+        let (error, _) = worst_error(c.composition, &points, &lights, settings.reference_nodes)
             .expect("measured");
         assert_eq!(error, c.error);
         let graph = trace_composition(c.composition, &points[0], &[]).expect("traced");
