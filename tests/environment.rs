@@ -166,3 +166,13 @@ fn invalid_rules_and_bands_are_errors() {
     let error = ShEnvironment::new(2, empty).unwrap_err().to_string();
     assert!(error.contains("viewers"), "{error}");
 }
+
+#[test]
+fn the_relative_norm_is_never_nan() {
+    use hairmath::diagnostics::relative_norm;
+    assert_eq!(relative_norm(&[3.0, 4.0], &[0.0, 0.0]), f64::INFINITY);
+    assert_eq!(relative_norm(&[0.0, 0.0], &[0.0, 0.0]), 0.0);
+    assert_eq!(relative_norm(&[f64::NAN, 0.0], &[1.0, 0.0]), f64::INFINITY);
+    assert_eq!(relative_norm(&[f64::INFINITY], &[1.0]), f64::INFINITY);
+    assert_eq!(relative_norm(&[1.0, 1.0], &[0.0, 1.0]), 1.0);
+}

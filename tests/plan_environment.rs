@@ -1,10 +1,12 @@
 #![cfg(feature = "plan")]
 //! Scenes lit by an SH environment (`environment = "sh"`): the plan meets its budget when its
-//! composition is re-measured with a finer environment rule on a grid of the scene's range,
-//! and a scene with both lights is planned within the budget under each.
+//! composition's `f32` model (the shader's CPU twin) is re-measured with a finer environment
+//! rule on a grid of the scene's range, and a scene with both lights is planned within the
+//! budget under each.
 
-use hairmath::bcsdf::{ChiangFarField, FarFieldRule};
-use hairmath::diagnostics::{EnvironmentRule, ShEnvironment};
+use hairmath::bcsdf::{Bcsdf, ChiangFarField, FarFieldRule, Model, Query};
+use hairmath::diagnostics::{relative_norm, EnvironmentRule, ShEnvironment};
+use hairmath::geometry::V3;
 use hairmath::models::ComposedHair;
 use hairmath::plan::{plan, scene_points, LightMeasure, Plan, PlanSettings, Scene};
 
@@ -34,7 +36,8 @@ fn blonde(lights: &str) -> String {
 }
 
 /// The worst E_env over a grid of 5 eumelanins of `scene`'s range [0.2, 0.4] (the planner
-/// measured the ends and 4 Kronecker points), with `rule` and the planner's 64-node reference.
+/// measured the ends and 4 Kronecker points), with `rule` and the planner's 64-node reference,
+/// of the `f32` model the shader computes.
 fn environment_error(plan: &Plan, lmax: usize, rule: EnvironmentRule) -> f64 {
     let environment = ShEnvironment::new(lmax, rule).unwrap();
     let reference_rule = FarFieldRule::gauss_legendre(64).unwrap();
@@ -47,7 +50,16 @@ fn environment_error(plan: &Plan, lmax: usize, rule: EnvironmentRule) -> f64 {
             let point = &scene_points(&scene(&text).hair, 0).unwrap()[0];
             let reference = ChiangFarField::with_rule(&point.params, &reference_rule);
             let model = ComposedHair::new(&point.params, plan.composition).unwrap();
-            environment.relative_error(&model, &environment.transfer(&reference))
+            let single = model.instantiate::<f32>();
+            let transfer = environment.transfer_of(|wi, wo| {
+                let q = Query::far(
+                    V3::from_f64(wi.x, wi.y, wi.z),
+                    V3::from_f64(wo.x, wo.y, wo.z),
+                );
+                single.eval(&q).map(f64::from)
+            });
+            let reference = environment.transfer(&reference);
+            relative_norm(&transfer, &reference)
         })
         .fold(0.0, f64::max)
 }

@@ -161,9 +161,13 @@ impl ShEnvironment {
     /// [`ShEnvironment::relative_error`]: the squared norm of a difference of two is the
     /// numerator of E_env.
     pub fn transfer<M: Bcsdf<f64> + ?Sized>(&self, model: &M) -> Vec<f64> {
-        let mut out = self.transfers(1, |wi, wo, s| {
-            s[0] = model.eval(&Query::far(wi, wo));
-        });
+        self.transfer_of(|wi, wo| model.eval(&Query::far(wi, wo)))
+    }
+
+    /// The transfer vector of any evaluation `s(wi, wo)` (RGB, no cosine factor): of a model
+    /// in another precision, or of a shader's outputs at these directions.
+    pub fn transfer_of(&self, s: impl Fn(V3<f64>, V3<f64>) -> [f64; 3]) -> Vec<f64> {
+        let mut out = self.transfers(1, |wi, wo, values| values[0] = s(wi, wo));
         out.pop().unwrap_or_default()
     }
 
@@ -185,8 +189,9 @@ impl ShEnvironment {
     }
 }
 
-/// `|a - b| / |b|`: 0 when both are 0, infinite when `a` is not finite or `b` is 0 alone.
-pub(crate) fn relative_norm(a: &[f64], b: &[f64]) -> f64 {
+/// `|a - b| / |b|` of two vectors (a transfer or a measure's vector against the reference's):
+/// 0 when both are 0, infinite (never NaN) when `a` is not finite or `b` is 0 alone.
+pub fn relative_norm(a: &[f64], b: &[f64]) -> f64 {
     let difference: f64 = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum();
     let reference: f64 = b.iter().map(|y| y * y).sum();
     match (difference.is_finite(), reference > 0.0) {

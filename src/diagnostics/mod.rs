@@ -63,8 +63,7 @@ mod timing;
 pub use comparison::{DirectionPairs, EnergyReference, ModelError, OpCounts, ReferenceSamples};
 pub use curves::{lobe_curves, theta_curves, LobeCurve, ThetaCurve};
 pub use energy::{lobe_energies, LobeEnergies};
-pub(crate) use environment::relative_norm;
-pub use environment::{EnvironmentRule, ShEnvironment};
+pub use environment::{relative_norm, EnvironmentRule, ShEnvironment};
 pub use furnace::{albedo, viewing_direction, white_furnace, Furnace, FurnaceCase, VIEW_AZIMUTH};
 pub use integrator::{
     integrator_table, IntegratorRow, IntegratorSettings, IntegratorTable, NodeErrors, NodeTiming,

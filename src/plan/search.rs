@@ -574,8 +574,9 @@ pub struct PlannedLobe {
     pub table: Option<LobeTableSize>,
     /// Gerard's or Nguyen and Donnelly's table's size, for an option that reads one.
     pub marschner_table: Option<MarschnerTableSize>,
-    /// The lobe's own error: `sqrt(sum (S_p - S_ref,p)^2 / sum S_ref^2)`, the worst over the
-    /// scene's points (a dropped lobe's is its share of the reference).
+    /// The lobe's own error: `sqrt(sum (S_p - S_ref,p)^2 / sum S_ref^2)` under directional
+    /// light, the same of the transfers under an SH environment, the worst over the scene's
+    /// points and lights (a dropped lobe's is its share of the reference).
     pub error: f64,
     /// The weighted cost of a shader of this lobe alone.
     pub cost: f64,
