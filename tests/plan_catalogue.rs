@@ -136,7 +136,12 @@ fn the_options_cover_every_lobe_and_include_the_plans_choices() {
     for o in &c.options {
         assert!(o.error.is_finite() && o.error >= 0.0, "{}", o.describe());
         assert_eq!(o.far_field_nodes.is_some(), o.describe().contains("nodes)"));
-        assert_eq!(o.table.is_some(), o.describe().contains("table)"));
+        let (d, marschner) = (o.describe(), "Marschner table)");
+        assert_eq!(
+            o.table.is_some(),
+            d.contains("table)") && !d.contains(marschner)
+        );
+        assert_eq!(o.marschner_table.is_some(), d.contains(marschner), "{d}");
     }
 }
 

@@ -602,7 +602,7 @@ impl PlannedLobe {
             ));
         }
         if let Some(t) = self.marschner_table {
-            text.push_str(&format!(" ({} x {} table)", t.phi, t.theta_d));
+            text.push_str(&format!(" ({} x {} Marschner table)", t.phi, t.theta_d));
         }
         text
     }
