@@ -1211,7 +1211,8 @@ pub fn worst_error(
     reference_nodes: usize,
 ) -> Result<(f64, usize), PlanError> {
     let rule = FarFieldRule::gauss_legendre(reference_nodes)?;
-    let mut worst = (f64::NEG_INFINITY, 0);
+    // Errors are never negative (nor NaN): no lights is an error of 0 at the first point.
+    let mut worst = (0.0, 0);
     for (i, point) in points.iter().enumerate() {
         let reference = ChiangFarField::<f64>::with_rule(&point.params, &rule);
         let model = ComposedHair::new(&point.params, composition)?;
