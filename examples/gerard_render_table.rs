@@ -4,8 +4,9 @@
 //! model's best-fit inputs and at his mapping, and Kajiya-Kay at its best-fit inputs, with
 //! each shader's operation counts.
 //!
-//! Run: `cargo run --release --example gerard_render_table [SIZE] [DIRECTIONS]`
-//! (defaults 128 and 8192; tens of minutes on two cores).
+//! Run: `cargo run --release --example gerard_render_table [SIZE] [CIRCLES]`
+//! (defaults 128 and the reference's default 2048 circles, `MeridianRule::with_circles`;
+//! Kajiya-Kay's sky by 32768 directions; tens of minutes on two cores).
 
 use hairmath::bcsdf::trace_eval;
 use hairmath::diagnostics::OpCounts;
@@ -13,8 +14,8 @@ use hairmath::params::HairParams;
 use hairmath::plan::OpWeights;
 use hairmath::render::{
     compare_gerard, gerard_ops, kajiya_kay_best_fit, Approximations, DirectionalLight,
-    GerardComparison, GerardConfig, GerardScene, GerardSources, PhaseAbsorption, RenderSettings,
-    Sky,
+    GerardComparison, GerardConfig, GerardScene, GerardSources, MeridianRule, PhaseAbsorption,
+    RenderSettings, Sky,
 };
 use hairmath::strands::groom::{groom, GroomKind, GroomSettings};
 use hairmath::strands::occluders::Opacity;
@@ -64,7 +65,10 @@ fn rows(
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1).map(|a| a.parse::<usize>());
     let size = args.next().transpose()?.unwrap_or(128);
-    let directions = args.next().transpose()?.unwrap_or(8192);
+    let circles = args
+        .next()
+        .transpose()?
+        .unwrap_or(RenderSettings::default().reference.circles);
     let strands = groom(&GroomSettings::new(GroomKind::Curly, 1000, 32, 0))?;
     let hair = HairParams::default();
     let scene = GerardScene {
@@ -86,7 +90,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     configs.push(config(4, 4, PhaseAbsorption::Tabulated, false));
     let settings = RenderSettings {
         size,
-        reference_directions: directions,
+        reference: MeridianRule::with_circles(circles)?,
+        classic_directions: 32768,
         ..RenderSettings::default()
     };
     let start = Instant::now();
@@ -113,7 +118,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let mapped_configs = [config(1, 2, PhaseAbsorption::Published, false)];
     let small = RenderSettings {
-        reference_directions: 2,
+        reference: MeridianRule::new(2, 4, 8)?,
         ..settings
     };
     // The reference of this second run is not used: Gerard at his mapping is measured against
@@ -121,12 +126,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mapped_run = compare_gerard(&scene, &mapped_configs, &small, &at_mapping, &progress)?;
     let kk_cost = OpWeights::DEFAULT.cost(&OpCounts::of(&trace_eval(&kajiya_kay)));
     println!(
-        "curly groom 1000 x 32, opacity 0.7, {size} x {size} ({} pixels covered), reference {directions} directions per pixel",
-        comparison.covered
+        "curly groom 1000 x 32, opacity 0.7, {size} x {size} ({} pixels covered), reference {:?}",
+        comparison.covered, comparison.reference_rule
     );
     println!(
-        "reference at {} directions against it: relative error {:.4}, rmse {:.5}",
-        directions / 2,
+        "reference by {:?} against it: relative error {:.4}, rmse {:.5}",
+        comparison.reference_rule.halved(),
         comparison.reference_convergence.relative_error,
         comparison.reference_convergence.rmse
     );

@@ -248,6 +248,8 @@ fn fast_subcommands_survive_a_closed_pipe_and_a_full_disk() {
                 "render-gerard",
                 "--size",
                 "6",
+                "--circles",
+                "16",
                 "--directions",
                 "16",
                 "--out",

@@ -209,6 +209,8 @@ fn render_gerard_writes_the_images_and_their_errors() {
         "2",
         "--size",
         "16",
+        "--circles",
+        "32",
         "--directions",
         "128",
         "--out",

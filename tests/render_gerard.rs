@@ -20,7 +20,8 @@ use hairmath::quadrature::SphereRule;
 use hairmath::render::shading::{interpolated_transmittance, reference_radiance, ClassicShading};
 use hairmath::render::{
     compare_gerard, first_hits, gerard_ops, image_error, Approximations, Camera, DirectionalLight,
-    GerardConfig, GerardScene, GerardSources, Hit, Image, PhaseAbsorption, RenderSettings, Sky,
+    GerardConfig, GerardScene, GerardSources, Hit, Image, MeridianRule, PhaseAbsorption,
+    RenderSettings, Sky,
 };
 use hairmath::strands::groom::{groom, GroomKind, GroomSettings};
 use hairmath::strands::occluders::{Occluders, Opacity};
@@ -224,7 +225,8 @@ fn the_camera_frames_every_point_and_checks_its_size() {
 fn small_settings() -> RenderSettings {
     RenderSettings {
         size: 20,
-        reference_directions: 512,
+        reference: MeridianRule::new(32, 8, 16).unwrap(),
+        classic_directions: 512,
         far_field_nodes: 32,
         phase_samples: 33,
         tabulated_samples: [17, 5],

@@ -4,9 +4,8 @@
 use super::camera::{first_hits, Camera, Hit};
 use super::image::{image_error, render, Image, ImageError};
 use super::lighting::{DirectionalLight, Sky};
-use super::shading::{
-    gerard_radiance, interpolated_transmittance, reference_radiance, ClassicShading,
-};
+use super::meridian::{meridian_radiance, MeridianRule};
+use super::shading::{gerard_radiance, interpolated_transmittance, ClassicShading};
 use crate::absorption::Absorption;
 use crate::bcsdf::{Bcsdf, ChiangFarField, FarFieldRule, FromInputs, Marschner2003};
 use crate::diagnostics::OpCounts;
@@ -232,9 +231,12 @@ impl GerardConfig {
 pub struct RenderSettings {
     /// Pixels per side.
     pub size: usize,
-    /// Directions per pixel of the reference ([`SphereRule`]); its convergence is measured
-    /// against half as many.
-    pub reference_directions: usize,
+    /// The reference's rule ([`MeridianRule`]); its convergence is measured against
+    /// [`MeridianRule::halved`].
+    pub reference: MeridianRule,
+    /// Directions per pixel of the classic model's sky integral ([`SphereRule`]: the
+    /// integrand, with `V` from the transmittance's coefficients, is smooth).
+    pub classic_directions: usize,
     /// Nodes of the reference's far field ([`FarFieldRule::gauss_legendre`]).
     pub far_field_nodes: usize,
     /// Samples of `sin theta_r` of the phase tables.
@@ -248,13 +250,15 @@ pub struct RenderSettings {
 }
 
 impl Default for RenderSettings {
-    /// 256 x 256 pixels; 8192 directions per pixel; 64 far-field nodes; Gerard's 128 samples
+    /// 256 x 256 pixels; the default [`MeridianRule`]; 8192 directions for the classic model;
+    /// 64 far-field nodes; Gerard's 128 samples
     /// of `sin theta_r`, 64 x 16 for the tabulated absorption; the default phase rule; the fast
     /// baker.
     fn default() -> Self {
         Self {
             size: 256,
-            reference_directions: 8192,
+            reference: MeridianRule::default(),
+            classic_directions: 8192,
             far_field_nodes: 64,
             phase_samples: 128,
             tabulated_samples: [64, 16],
@@ -273,7 +277,7 @@ pub enum Stage {
     Transmittance,
     /// Rendering the reference (rows).
     Reference,
-    /// Rendering the reference at half the directions (rows).
+    /// Rendering the reference by the halved rule (rows).
     ReferenceHalf,
     /// Rendering Gerard's shading (rows).
     Gerard,
@@ -304,7 +308,7 @@ pub struct GerardRender {
     pub image: Image,
     /// Its error against the reference.
     pub error: ImageError,
-    /// Its error against the reference at half the directions (how much the reference's
+    /// Its error against the reference by the halved rule (how much the reference's
     /// quadrature moves the figure).
     pub error_against_half: ImageError,
 }
@@ -320,7 +324,9 @@ pub struct GerardComparison {
     pub kajiya_kay: Image,
     /// Kajiya-Kay's image against the reference.
     pub kajiya_kay_error: ImageError,
-    /// The reference at half the directions against the reference: its convergence.
+    /// The reference's rule.
+    pub reference_rule: MeridianRule,
+    /// The reference by the halved rule against the reference: its convergence.
     pub reference_convergence: ImageError,
     /// The number of covered pixels.
     pub covered: usize,
@@ -350,8 +356,12 @@ pub fn compare_gerard(
         config.check()?;
     }
     let camera = Camera::framing(scene.strands, settings.size)?;
-    let rule = SphereRule::fibonacci(settings.reference_directions)?;
-    let half = SphereRule::fibonacci((settings.reference_directions / 2).max(1))?;
+    let rule = MeridianRule::new(
+        settings.reference.circles,
+        settings.reference.scattering_circles,
+        settings.reference.samples,
+    )?;
+    let classic_rule = SphereRule::fibonacci(settings.classic_directions)?;
     let occluders = Occluders::new(scene.strands, scene.opacity);
     let hits = first_hits(&occluders, &camera);
     let v_lmax = configs.iter().map(|c| c.v_lmax).max().unwrap_or(0);
@@ -363,16 +373,12 @@ pub fn compare_gerard(
     let lights = (&scene.sky, &scene.light);
     let size = settings.size;
     let stage = |s: Stage| move |done, total| progress(s, done, total);
-    let reference_with = |rule: &SphereRule, s: Stage| {
-        let shade = |hit: &Hit| {
-            Ok(reference_radiance(
-                hit, &occluders, &far_field, lights, rule,
-            ))
-        };
+    let reference_with = |rule: &MeridianRule, s: Stage| {
+        let shade = |hit: &Hit| meridian_radiance(hit, &occluders, &far_field, lights, rule);
         render(size, &hits, shade, &stage(s))
     };
     let reference = reference_with(&rule, Stage::Reference)?;
-    let reference_half = reference_with(&half, Stage::ReferenceHalf)?;
+    let reference_half = reference_with(&rule.halved(), Stage::ReferenceHalf)?;
     let mut gerard = Vec::with_capacity(configs.len());
     for config in configs {
         progress(Stage::PhaseTables, 0, 1);
@@ -397,7 +403,7 @@ pub fn compare_gerard(
     let first = configs[0];
     let classic = ClassicShading::new(
         models.kajiya_kay,
-        &rule,
+        &classic_rule,
         &scene.sky,
         first.v_lmax,
         first.bias,
@@ -410,6 +416,7 @@ pub fn compare_gerard(
     Ok(GerardComparison {
         kajiya_kay_error: image_error(&kajiya_kay, &reference)?,
         reference_convergence: image_error(&reference_half, &reference)?,
+        reference_rule: rule,
         covered: reference.covered.iter().filter(|&&c| c).count(),
         reference,
         gerard,

@@ -4,6 +4,10 @@ use crate::error::ParamError;
 use crate::sh::project_with_nodes;
 use glam::DVec3;
 
+/// Up in the grooms' frame: the sky's radiance steps from the ground's to the horizon's where
+/// a direction crosses the plane orthogonal to it.
+pub const UP: DVec3 = DVec3::Y;
+
 /// A procedural sky: a gradient from the ground's colour below the horizon to the zenith's
 /// above (in `y`, the grooms' up), and a sun glow `sun_radiance max(0, w.sun)^sun_exponent`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,7 +43,7 @@ impl Default for Sky {
 impl Sky {
     /// The radiance arriving from direction `w`.
     pub fn radiance(&self, w: DVec3) -> [f64; 3] {
-        let up = w.y.clamp(-1.0, 1.0);
+        let up = w.dot(UP).clamp(-1.0, 1.0);
         let glow = w.dot(self.sun).max(0.0).powf(self.sun_exponent);
         core::array::from_fn(|c| {
             let base = if up >= 0.0 {

@@ -4,14 +4,18 @@
 //! directional light, and three ways to shade the hit point ([`shading`]):
 //!
 //! - the reference, Gerard's "ground truth" (single scattering): the integral over the sphere
-//!   of `L_env(w) V(x, w) S(w, wo)` with the exact transmittance (rays through the strands,
-//!   [`crate::strands::occluders`]) and the Chiang far field as `S`, by a Fibonacci rule of
-//!   equal weights, plus the light's `L V(x, wl) S(wl, wo)`;
+//!   of `L_env(w) V(x, w) S(w, wo)` with the exact transmittance (the strands' cylinders,
+//!   [`crate::strands::occluders`]) and the Chiang far field as `S`, plus the light's
+//!   `L V(x, wl) S(wl, wo)`. [`meridian`] integrates it along great circles, `V` in closed
+//!   form along each ([`crate::strands::pencil`]), which converges where a rule of points
+//!   cannot (the strands' shadows are thinner than any practical spacing of directions);
+//!   [`shading::reference_radiance`] by a Fibonacci rule of equal weights, the independent
+//!   check of the smooth part;
 //! - Gerard's shading ([`crate::models::gerard_sh::GerardSh`]) with the transmittance's baked
 //!   coefficients interpolated along the segment (as a rasteriser interpolates vertex
 //!   attributes) and the sky projected to spherical harmonics;
 //! - a classic model (Kajiya-Kay) given the same inputs as Gerard's: `V` from the same
-//!   coefficients, the sky itself integrated by the reference's rule.
+//!   coefficients, the sky itself integrated by a Fibonacci rule.
 //!
 //! [`compare_gerard`] renders the three and measures the two approximations against the
 //! reference.
@@ -30,6 +34,7 @@ mod camera;
 mod comparison;
 mod image;
 mod lighting;
+pub mod meridian;
 mod output;
 pub mod shading;
 pub mod swatch;
@@ -43,7 +48,8 @@ pub use comparison::{
     RenderSettings, Stage,
 };
 pub use image::{image_error, render, Image, ImageError};
-pub use lighting::{DirectionalLight, Sky};
+pub use lighting::{DirectionalLight, Sky, UP};
+pub use meridian::{meridian_radiance, MeridianRule};
 pub use output::side_by_side;
 #[cfg(feature = "png")]
 pub use output::write_png;

@@ -14,7 +14,7 @@ use crate::strands::transmittance::Transmittance;
 use glam::{DVec3, Vec3};
 
 /// `S(w, +Z)` of `model` at a hit of tangent `tangent` (world-space directions).
-fn scattered(model: &dyn Bcsdf<f64>, tangent: Vec3, w: DVec3) -> [f64; 3] {
+pub(super) fn scattered(model: &dyn Bcsdf<f64>, tangent: Vec3, w: DVec3) -> [f64; 3] {
     let t = V3::new(
         f64::from(tangent.x),
         f64::from(tangent.y),
@@ -26,7 +26,7 @@ fn scattered(model: &dyn Bcsdf<f64>, tangent: Vec3, w: DVec3) -> [f64; 3] {
 }
 
 /// Adds `scale * a * b` to `out`, channel by channel.
-fn accumulate(out: &mut [f64; 3], scale: f64, a: [f64; 3], b: [f64; 3]) {
+pub(super) fn accumulate(out: &mut [f64; 3], scale: f64, a: [f64; 3], b: [f64; 3]) {
     for c in 0..3 {
         out[c] += scale * a[c] * b[c];
     }
@@ -130,7 +130,7 @@ pub fn gerard_radiance<const C: usize>(
 
 /// A classic model (`S` any [`Bcsdf`]) lit as Gerard's shading is, from the same inputs: the
 /// sky's radiance times `V` reconstructed from the transmittance's coefficients, integrated by
-/// a [`SphereRule`] (the reference's), and the light times `V(wl)` with the bias of Gerard's eq. 10.
+/// a [`SphereRule`], and the light times `V(wl)` with the bias of Gerard's eq. 10.
 pub struct ClassicShading<'a> {
     model: &'a (dyn Bcsdf<f64> + Sync),
     rule: &'a SphereRule,

@@ -12,6 +12,7 @@ pub mod density;
 pub mod groom;
 pub mod hair_file;
 pub mod occluders;
+pub mod pencil;
 pub mod transmittance;
 
 use core::ops::Range;

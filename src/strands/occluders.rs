@@ -418,7 +418,8 @@ impl Occluders {
         mut leaf: impl FnMut(&'a [Cylinder]) -> ControlFlow<()>,
     ) {
         let mut stack = [0u32; STACK];
-        let mut depth = 1;
+        // Without cylinders the root is an empty leaf, whose count 0 would read as a branch.
+        let mut depth = usize::from(!self.cylinders.is_empty());
         while depth > 0 {
             depth -= 1;
             let node = self.nodes[stack[depth] as usize];

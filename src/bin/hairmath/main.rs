@@ -182,15 +182,16 @@ enum Command {
     /// a hundred times slower). A progress bar shows on a terminal's stderr.
     Bake(strands::BakeArgs),
     /// Render a `.hair` file with Gerard's spherical-harmonic shading and against the
-    /// reference (Gerard's "ground truth": single scattering, the exact transmittance by rays
-    /// and the Chiang far field, integrated over the sphere per pixel), lit by a procedural
+    /// reference (Gerard's "ground truth": single scattering, the exact transmittance of the
+    /// strands' cylinders and the Chiang far field, integrated over the sphere per pixel along
+    /// great circles, the transmittance in closed form along each), lit by a procedural
     /// sky and one directional light; also Kajiya-Kay at its best-fit inputs given the same
     /// inputs as Gerard's. Orthographic, looking along -Z.
     ///
     /// Writes DIR/reference.png, DIR/gerard.png, DIR/kajiya_kay.png, DIR/difference.png
     /// (|gerard - reference|, four times brighter), DIR/side_by_side.png and DIR/errors.json
     /// (rmse and relative_error of Gerard's image against the reference, the same under
-    /// kajiya_kay, and the reference's convergence against half its directions). A progress
+    /// kajiya_kay, and the reference's convergence against half its circles). A progress
     /// bar shows on a terminal's stderr.
     RenderGerard(render::RenderArgs),
     /// Render a procedural hair swatch (300 gently wavy fibres in three layers, seen face on,
