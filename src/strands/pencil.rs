@@ -62,10 +62,13 @@ struct Solid {
 }
 
 impl Solid {
+    /// The cylinder in f64, its axis normalised again: the f32 axis is unit only to about
+    /// 1e-7, which at a distance `D` moves the squared distance across it by about
+    /// `1e-7 D^2`, a percent of a strand's squared radius at `D = 1`.
     fn of(cylinder: &Cylinder) -> Self {
         Self {
             base: cylinder.base.as_dvec3(),
-            axis: cylinder.axis.as_dvec3(),
+            axis: cylinder.axis.as_dvec3().normalize_or(DVec3::X),
             length: f64::from(cylinder.length),
             radius: f64::from(cylinder.radius),
         }
