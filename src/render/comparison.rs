@@ -251,9 +251,8 @@ pub struct RenderSettings {
 
 impl Default for RenderSettings {
     /// 256 x 256 pixels; the default [`MeridianRule`]; 8192 directions for the classic model;
-    /// 64 far-field nodes; Gerard's 128 samples
-    /// of `sin theta_r`, 64 x 16 for the tabulated absorption; the default phase rule; the fast
-    /// baker.
+    /// 64 far-field nodes; Gerard's 128 samples of `sin theta_r`, 64 x 16 for the tabulated
+    /// absorption; the default phase rule; the fast baker.
     fn default() -> Self {
         Self {
             size: 256,
