@@ -10,9 +10,10 @@
 //! - the whole comparison on a small groom: finite, covered, its configurations checked, the
 //!   8-bit tables' change small against the method's error.
 
-use glam::{DVec3, Vec3};
-use hairmath::bcsdf::{Bcsdf, ChiangFarField, FarFieldRule, Query};
-use hairmath::geometry::{local_directions, V3};
+mod render_support;
+
+use glam::Vec3;
+use hairmath::bcsdf::Bcsdf;
 use hairmath::models::gerard_sh::PhaseQuadrature;
 use hairmath::models::{KajiyaKay, KajiyaKayParams};
 use hairmath::params::HairParams;
@@ -27,6 +28,7 @@ use hairmath::strands::groom::{groom, GroomKind, GroomSettings};
 use hairmath::strands::occluders::{Occluders, Opacity};
 use hairmath::strands::transmittance::{Baker, FastSettings, Transmittance};
 use hairmath::strands::{PointAttribute, SegmentCounts, Strands};
+use render_support::{albedo_radiance, constant_sky, dark, far_field, relative};
 
 /// One straight strand along x through the origin.
 fn lone_strand() -> Strands {
@@ -53,55 +55,15 @@ fn lone_hit() -> Hit {
     }
 }
 
-fn constant_sky(radiance: f64) -> Sky {
-    Sky {
-        zenith: [radiance; 3],
-        horizon: [radiance; 3],
-        ground: [radiance; 3],
-        sun_radiance: [0.0; 3],
-        ..Sky::default()
-    }
-}
-
-fn dark() -> DirectionalLight {
-    DirectionalLight {
-        direction: DVec3::Y,
-        radiance: [0.0; 3],
-    }
-}
-
-fn far_field() -> ChiangFarField<f64> {
-    ChiangFarField::with_rule(
-        &HairParams::default(),
-        &FarFieldRule::gauss_legendre(64).unwrap(),
-    )
-}
-
-fn relative(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3)
-        .map(|c| (a[c] - b[c]).abs() / b[c].abs())
-        .fold(0.0, f64::max)
-}
-
 #[test]
 fn the_reference_of_a_lone_strand_under_a_constant_sky_is_its_albedo() {
     let strands = lone_strand();
     let occluders = Occluders::new(&strands, Opacity::Uniform(1.0));
-    let model = far_field();
+    let model = far_field(64);
     let sky = constant_sky(2.0);
     // Independent: the albedo by a product Gauss rule in the fibre's frame (wo = +Z is
     // perpendicular to the tangent +X: local wo along the frame's normal).
-    let product = SphereRule::new(64, 8, 512);
-    let wo = V3::new(0.0, 0.0, 1.0);
-    let mut albedo = [0.0; 3];
-    for &(w, weight) in &product.nodes {
-        let [wi, wo] = local_directions(V3::new(1.0, 0.0, 0.0), w, wo);
-        let s = model.eval(&Query::far(wi, wo));
-        for c in 0..3 {
-            albedo[c] += weight * s[c];
-        }
-    }
-    let expected = albedo.map(|a| 2.0 * a);
+    let expected = albedo_radiance(&model, Vec3::X, 2.0);
     let errors: Vec<f64> = [2048, 8192, 32768]
         .iter()
         .map(|&n| {
@@ -118,7 +80,7 @@ fn the_reference_of_a_lone_strand_under_a_constant_sky_is_its_albedo() {
 fn the_classic_shading_of_an_unoccluded_strand_is_the_reference_sum() {
     let strands = lone_strand();
     let occluders = Occluders::new(&strands, Opacity::Uniform(1.0));
-    let model = far_field();
+    let model = far_field(64);
     let sky = Sky::default();
     let light = DirectionalLight::default();
     let rule = SphereRule::fibonacci(4096).unwrap();
@@ -363,7 +325,7 @@ fn each_absorption_variant_is_fitted_at_its_own_inputs() {
     let hair = HairParams::default();
     let pairs = 1024;
     let fitted = GerardSources::best_fit(&hair, pairs).unwrap();
-    let reference = ReferenceSamples::new(&far_field(), DirectionPairs::kronecker(pairs));
+    let reference = ReferenceSamples::new(&far_field(64), DirectionPairs::kronecker(pairs));
     // Gerard's direct model with `refit` exponents from the absorption of `source`.
     let gerard_error = |source: &Marschner2003, refit: bool| {
         let mut inputs = Gerard::<f64>::mapped_inputs(&hair);

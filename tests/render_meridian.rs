@@ -10,40 +10,16 @@
 //!   transmission, exactly;
 //! - the rule's domain.
 
-use glam::{DVec3, Vec3};
-use hairmath::bcsdf::{Bcsdf, ChiangFarField, FarFieldRule, Query};
-use hairmath::geometry::{local_directions, V3};
+mod render_support;
+
+use glam::Vec3;
 use hairmath::models::{KajiyaKay, KajiyaKayParams};
-use hairmath::params::HairParams;
 use hairmath::quadrature::SphereRule;
 use hairmath::render::shading::reference_radiance;
 use hairmath::render::{meridian_radiance, DirectionalLight, Hit, MeridianRule, Sky};
 use hairmath::strands::occluders::{Cylinder, Occluders, Opacity};
 use hairmath::strands::{PointAttribute, SegmentCounts, Strands};
-
-fn far_field(nodes: usize) -> ChiangFarField<f64> {
-    ChiangFarField::with_rule(
-        &HairParams::default(),
-        &FarFieldRule::gauss_legendre(nodes).unwrap(),
-    )
-}
-
-fn constant_sky(radiance: f64) -> Sky {
-    Sky {
-        zenith: [radiance; 3],
-        horizon: [radiance; 3],
-        ground: [radiance; 3],
-        sun_radiance: [0.0; 3],
-        ..Sky::default()
-    }
-}
-
-fn dark() -> DirectionalLight {
-    DirectionalLight {
-        direction: DVec3::Y,
-        radiance: [0.0; 3],
-    }
-}
+use render_support::{albedo_radiance, constant_sky, dark, far_field, relative};
 
 fn hit(point: Vec3, tangent: Vec3, strand: u32) -> Hit {
     Hit {
@@ -55,12 +31,6 @@ fn hit(point: Vec3, tangent: Vec3, strand: u32) -> Hit {
     }
 }
 
-fn relative(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3)
-        .map(|c| (a[c] - b[c]).abs() / b[c].abs())
-        .fold(0.0, f64::max)
-}
-
 fn no_occluders() -> Occluders {
     Occluders::from_cylinders(Vec::new())
 }
@@ -69,27 +39,13 @@ fn no_occluders() -> Occluders {
 fn a_lone_strand_under_a_constant_sky_gives_its_albedo() {
     let model = far_field(64);
     let sky = constant_sky(2.0);
-    let wo = V3::new(0.0, 0.0, 1.0);
-    let product = SphereRule::new(64, 8, 512);
     for tangent in [
         Vec3::X,
         Vec3::Y,
         Vec3::Z,
         Vec3::new(1.0, 2.0, -0.5).normalize(),
     ] {
-        let t = V3::new(
-            f64::from(tangent.x),
-            f64::from(tangent.y),
-            f64::from(tangent.z),
-        );
-        let mut albedo = [0.0; 3];
-        for &(w, weight) in &product.nodes {
-            let [wi, wo] = local_directions(t, w, wo);
-            let s = model.eval(&Query::far(wi, wo));
-            for c in 0..3 {
-                albedo[c] += 2.0 * weight * s[c];
-            }
-        }
+        let albedo = albedo_radiance(&model, tangent, 2.0);
         let errors: Vec<f64> = [
             MeridianRule::new(16, 8, 16).unwrap(),
             MeridianRule::new(64, 64, 64).unwrap(),

@@ -24,18 +24,14 @@ use super::lighting::{DirectionalLight, Sky, UP};
 use super::shading::{accumulate, scattered};
 use crate::bcsdf::Bcsdf;
 use crate::error::ParamError;
+use crate::quadrature::gauss_legendre;
 use crate::strands::occluders::Occluders;
 use crate::strands::pencil::{CircleSpan, Crossing, GreatCircle, Pencil};
 use core::f64::consts::{PI, TAU};
 
-/// Nodes and weights of the 4-point Gauss-Legendre rule on `[-1, 1]` (Abramowitz and Stegun
-/// table 25.4).
-const GAUSS_4: [(f64, f64); 4] = [
-    (-0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
-    (-0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
-    (0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
-    (0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
-];
+/// Nodes of the Gauss-Legendre rule on each panel: exact for the cubic the panel's
+/// antiderivative is built from (the Legendre coefficients `P_0..P_3`).
+const PANEL_NODES: usize = 4;
 
 /// How finely the reference by great circles integrates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -269,6 +265,7 @@ pub fn meridian_radiance(
         samples: rule.samples,
     };
     let crossings = circles_crossing(&pencil, occluders, hit.strand);
+    let gauss = gauss_legendre(PANEL_NODES);
     let mut out = [0.0; 3];
     let mut events = Vec::new();
     for (j, cylinders) in crossings.per_circle.iter().enumerate() {
@@ -281,7 +278,7 @@ pub fn meridian_radiance(
             &mut events,
         );
         let samples = grid.along(pencil.psi(j));
-        let integrand = Antiderivative::new(&circle, &samples, sky);
+        let integrand = Antiderivative::new(&circle, &samples, sky, &gauss);
         let along = integrand.with_visibility(base, &mut events);
         accumulate(&mut out, PI / rule.circles as f64, [1.0; 3], along);
     }
@@ -384,7 +381,8 @@ struct Antiderivative {
 }
 
 impl Antiderivative {
-    fn new(circle: &GreatCircle, samples: &Samples, sky: &Sky) -> Self {
+    /// `gauss`: the [`PANEL_NODES`]-point Gauss-Legendre rule on `[-1, 1]`.
+    fn new(circle: &GreatCircle, samples: &Samples, sky: &Sky, gauss: &[(f64, f64)]) -> Self {
         let mut ends: Vec<f64> = samples
             .breakpoints()
             .chain([PI])
@@ -402,13 +400,13 @@ impl Antiderivative {
         for pair in ends.windows(2) {
             let (mid, half) = (0.5 * (pair[1] + pair[0]), 0.5 * (pair[1] - pair[0]));
             let mut coefficients = [[0.0; 4]; 3];
-            for (x, w) in GAUSS_4 {
+            for &(x, w) in gauss {
                 let u = mid + half * x;
                 let radiance = sky.radiance(circle.direction(u));
-                let s = samples.at(u);
+                let (s, weight) = (samples.at(u), u.sin().abs());
                 let p = legendre(x);
                 for c in 0..3 {
-                    let g = u.sin().abs() * radiance[c] * s[c];
+                    let g = weight * radiance[c] * s[c];
                     for (k, p) in p.iter().enumerate() {
                         coefficients[c][k] += (2.0 * k as f64 + 1.0) / 2.0 * w * g * p;
                     }
