@@ -1,6 +1,7 @@
 //! Throughput of the Chiang 2016 hair BCSDF: evaluation, sampling and pdf in f64 and f32
-//! (scalar) and eval/pdf batched over `wide::f32x8` and `wide::f32x16` lanes (eval also from
-//! a structure of arrays, `eval_batch_soa`, against the array of structures).
+//! (scalar), eval/pdf batched over `wide::f32x8` and `wide::f32x16` lanes (eval also from a
+//! structure of arrays, `eval_batch_soa`, against the array of structures), and eval on each
+//! instruction set the CPU runs (`HostBatch`, chosen at run time: `eval/host/Avx512`, ...).
 //!
 //! Every benchmark processes the same 1024 deterministic samples per iteration and reports
 //! `Throughput::Elements(1024)`, so criterion's time divided by 1024 is the cost of one
@@ -8,27 +9,27 @@
 //! eumelanin 1.3 (the Mitsuba 3 peer, `benches/peers/mitsuba_hair_bench.py`, uses the same
 //! roughness, tilt and index).
 //!
-//! Run: `cargo bench --bench bcsdf` (or `-- batch` for the batched functions only;
-//! `-- parallel_batch` for the parallel batch on one and two threads against the sequential
-//! one, over 2^16 samples).
+//! Run: `cargo bench --bench bcsdf` (or `-- batch` for the batched functions only, `-- host`
+//! for the instruction sets; `-- parallel_batch` for the parallel batch on one and two threads
+//! against the sequential one, over 2^16 samples).
 //!
 //! **Benchmark of record.** The Mitsuba 3 peer JIT-compiles its vectorised LLVM backend for the
-//! host CPU (AVX-512 where available, 16 lanes), so the fair comparison builds this crate for
-//! the host too: `RUSTFLAGS="-C target-cpu=native" cargo bench --bench bcsdf -- eval`, and
-//! compares `eval/batch/f32x16` (one zmm register per value under AVX-512) with the peer's
-//! ns/eval from the same session. The default build (x86-64 baseline: SSE2, no FMA, no SSE4.1)
-//! is reported too; there `f32x16` is two `f32x8` halves, four SSE registers.
+//! host CPU (AVX-512 where available, 16 lanes). `HostBatch` picks the host's widest
+//! instruction set at run time, so the default build (no `RUSTFLAGS`) is the fair comparison:
+//! `eval/host/<set>` against the peer's ns/eval from the same session. `wide`'s lanes run the
+//! build's instructions: in the default build (x86-64 baseline: SSE2, no FMA, no SSE4.1)
+//! `f32x16` is two `f32x8` halves, four SSE registers.
 
 use std::hint::black_box;
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use hairmath::bcsdf::{
     eval_batch, eval_batch_soa, par_eval_batch, pdf_batch, BatchLanes, BatchReal, Bcsdf,
-    ChiangHair, DirectionSlices, Model, Query, RandomNumbers, RgbSlices, SampledBcsdf,
+    ChiangHair, DirectionSlices, HostBatch, Model, Query, RandomNumbers, RgbSlices, SampledBcsdf,
 };
 use hairmath::geometry::V3;
 use hairmath::params::HairParams;
-use hairmath::real::Real;
+use hairmath::real::{InstructionSet, Real};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
@@ -167,6 +168,24 @@ fn bench_eval(c: &mut Criterion) {
     }
     batch::<wide::f32x8>(&mut g, "f32x8", &p, &x);
     batch::<wide::f32x16>(&mut g, "f32x16", &p, &x);
+    let model = ChiangHair::<f64>::new(&p);
+    for set in InstructionSet::ALL.into_iter().filter(|s| s.is_supported()) {
+        let host = HostBatch::on(set, &model);
+        let mut out = vec![[0.0_f32; 3]; N];
+        g.bench_function(BenchmarkId::new("host", format!("{set:?}")), |b| {
+            b.iter(|| {
+                black_box(&host)
+                    .eval(
+                        black_box(&x.wi),
+                        black_box(&x.wo),
+                        black_box(&x.h),
+                        &mut out,
+                    )
+                    .expect("equal lengths");
+                black_box(&mut out);
+            })
+        });
+    }
     g.finish();
 }
 
@@ -277,9 +296,9 @@ fn random_samples(n: usize, seed: u64) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<f32
 /// Samples of the parallel batch's benchmark.
 const PARALLEL_N: usize = 1 << 16;
 
-/// The parallel batch ([`par_eval_batch`], lanes of [`BatchReal`]) on `PARALLEL_N` samples in
-/// pools of one and two threads, against the sequential [`eval_batch`] on the same samples:
-/// the ratios of one run are the scaling.
+/// The parallel batch ([`par_eval_batch`], lanes of [`BatchReal`]; [`HostBatch::par_eval`] on
+/// the host's instruction set) on `PARALLEL_N` samples in pools of one and two threads, against
+/// the sequential evaluation of the same samples: the ratios of one run are the scaling.
 fn bench_parallel(c: &mut Criterion) {
     let p = params();
     let (wi, wo, h) = random_samples(PARALLEL_N, 7);
@@ -306,10 +325,35 @@ fn bench_parallel(c: &mut Criterion) {
             })
         });
     }
+    let host = HostBatch::new(&ChiangHair::<f64>::new(&p));
+    g.bench_function("host sequential", |b| {
+        b.iter(|| {
+            black_box(&host)
+                .eval(&wi, &wo, &h, &mut out)
+                .expect("equal lengths");
+            black_box(&mut out);
+        })
+    });
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a thread pool");
+        g.bench_function(BenchmarkId::new("host threads", threads), |b| {
+            b.iter(|| {
+                pool.install(|| black_box(&host).par_eval(&wi, &wo, &h, &mut out))
+                    .expect("equal lengths");
+                black_box(&mut out);
+            })
+        });
+    }
     g.finish();
 }
 
 criterion_group!(benches, bench_eval, bench_sample, bench_pdf, bench_parallel);
+
+/// A batch evaluation of (wi, wo, h) into out.
+type BatchFn = dyn Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [[f32; 3]]);
 
 /// The Mitsuba peer's method (`/tmp/mi/run_peer.sh N 1`): `n` random samples evaluated in one
 /// call, one warm-up pass, then the best of five timed passes, printed as ns per evaluation.
@@ -318,19 +362,17 @@ fn peer_style(n: usize) {
     let p = params();
     let (wi, wo, h) = random_samples(n, 3);
     let mut out = vec![[0.0_f32; 3]; n];
-    fn best<L: BatchLanes>(
-        p: &HairParams,
+    fn best(
+        eval: impl Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [[f32; 3]]),
         wi: &[[f32; 3]],
         wo: &[[f32; 3]],
         h: &[f32],
         out: &mut [[f32; 3]],
     ) -> f64 {
-        let hair = ChiangHair::<f64>::new(p).instantiate::<L>();
         let mut best = f64::INFINITY;
         for pass in 0..6 {
             let t = std::time::Instant::now();
-            eval_batch(&hair, black_box(wi), black_box(wo), black_box(h), out)
-                .expect("equal lengths");
+            eval(black_box(wi), black_box(wo), black_box(h), out);
             black_box(&mut *out);
             if pass > 0 {
                 best = best.min(t.elapsed().as_secs_f64());
@@ -338,8 +380,24 @@ fn peer_style(n: usize) {
         }
         best * 1e9 / wi.len() as f64
     }
-    let x8 = best::<wide::f32x8>(&p, &wi, &wo, &h, &mut out);
-    let x16 = best::<wide::f32x16>(&p, &wi, &wo, &h, &mut out);
+    let model = ChiangHair::<f64>::new(&p);
+    fn lanes<L: BatchLanes + 'static>(model: &ChiangHair<f64>) -> Box<BatchFn> {
+        let hair = model.instantiate::<L>();
+        Box::new(move |wi, wo, h, out| eval_batch(&hair, wi, wo, h, out).expect("equal lengths"))
+    }
+    let x8 = best(lanes::<wide::f32x8>(&model), &wi, &wo, &h, &mut out);
+    let x16 = best(lanes::<wide::f32x16>(&model), &wi, &wo, &h, &mut out);
+    let sets: Vec<String> = InstructionSet::ALL
+        .into_iter()
+        .filter(|set| set.is_supported())
+        .map(|set| {
+            let batch = HostBatch::on(set, &model);
+            let eval = |wi: &_, wo: &_, h: &_, out: &mut _| {
+                batch.eval(wi, wo, h, out).expect("equal lengths")
+            };
+            format!("{set:?} {:.1} ns", best(eval, &wi, &wo, &h, &mut out))
+        })
+        .collect();
     let mean: f64 = out
         .iter()
         .map(|v| v.iter().map(|&c| c as f64).sum::<f64>())
@@ -347,7 +405,8 @@ fn peer_style(n: usize) {
         / (3 * n) as f64;
     println!(
         "hairmath batch eval (N={n}, one thread, best of 5 after warm-up): f32x8 {x8:.1} ns, \
-         f32x16 {x16:.1} ns per evaluation (mean value {mean:.5})"
+         f32x16 {x16:.1} ns, HostBatch on {} per evaluation (mean value {mean:.5})",
+        sets.join(", ")
     );
 }
 

@@ -47,9 +47,12 @@ pub fn fresnel_from_outside<R: Real>(cos_i: R, eta: R, inv_eta: R) -> R {
         "Born and Wolf, section 1.5 (unpolarised dielectric reflectance)",
         [cos_i, eta, inv_eta]
     );
-    R::call(&FUNCTION, [cos_i, eta, inv_eta], |[cos_i, eta, inv_eta]| {
-        [reflectance(cos_i, eta, inv_eta).0]
-    })[0]
+    R::call(
+        &FUNCTION,
+        [cos_i, eta, inv_eta],
+        #[inline(always)]
+        |[cos_i, eta, inv_eta]| [reflectance(cos_i, eta, inv_eta).0],
+    )[0]
 }
 
 /// `(R, sin^2 theta_t)` for `cos_i` in [0, 1] on the side of relative index `eta` (reciprocal
@@ -71,12 +74,17 @@ fn reflectance<R: Real>(cos_i: R, eta: R, inv_eta: R) -> (R, R) {
 pub fn fresnel_schlick<R: Real>(cos_i: R, eta: R) -> R {
     const FUNCTION: ShaderFunction =
         crate::shader_function!(fresnel_schlick, "Schlick 1994, eq. 24", [cos_i, eta]);
-    R::call(&FUNCTION, [cos_i, eta], |[cos_i, eta]| {
-        let r0 = ((eta - R::c(1.0)) / (eta + R::c(1.0))).sqr();
-        let m = R::c(1.0) - cos_i.clamp(R::c(0.0), R::c(1.0));
-        let m2 = m * m;
-        [r0 + (R::c(1.0) - r0) * m2 * m2 * m]
-    })[0]
+    R::call(
+        &FUNCTION,
+        [cos_i, eta],
+        #[inline(always)]
+        |[cos_i, eta]| {
+            let r0 = ((eta - R::c(1.0)) / (eta + R::c(1.0))).sqr();
+            let m = R::c(1.0) - cos_i.clamp(R::c(0.0), R::c(1.0));
+            let m2 = m * m;
+            [r0 + (R::c(1.0) - r0) * m2 * m2 * m]
+        },
+    )[0]
 }
 
 /// Bravais' virtual index for the perpendicular polarisation and the azimuthal (projected)

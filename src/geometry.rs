@@ -210,8 +210,11 @@ pub fn local_fibre_angles<R: Real>(wi: V3<R>, wo: V3<R>) -> FibreAngles<R> {
         [wi: vec3, wo: vec3] -> {sin_theta_i, cos_theta_i, sin_theta_o, cos_theta_o, phi}
     );
     let args = [wi.x, wi.y, wi.z, wo.x, wo.y, wo.z];
-    let [sin_theta_i, cos_theta_i, sin_theta_o, cos_theta_o, phi] =
-        R::call(&FUNCTION, args, |[ix, iy, iz, ox, oy, oz]| {
+    let [sin_theta_i, cos_theta_i, sin_theta_o, cos_theta_o, phi] = R::call(
+        &FUNCTION,
+        args,
+        #[inline(always)]
+        |[ix, iy, iz, ox, oy, oz]| {
             // phi_o - phi_i is the signed angle from wi's projection to wo's.
             let (sin_i, cos_i) = local_sin_cos_theta(V3::new(ix, iy, iz));
             let (sin_o, cos_o) = local_sin_cos_theta(V3::new(ox, oy, oz));
@@ -222,7 +225,8 @@ pub fn local_fibre_angles<R: Real>(wi: V3<R>, wo: V3<R>) -> FibreAngles<R> {
                 cos_o,
                 local_azimuth_between(iy, iz, oy, oz),
             ]
-        });
+        },
+    );
     FibreAngles {
         sin_theta_i,
         cos_theta_i,
@@ -304,17 +308,22 @@ pub fn fibre_frame<R: Real>(tangent: V3<R>) -> [V3<R>; 3] {
         [tangent: vec3] -> {tangent: vec3, normal: vec3, binormal: vec3}
     );
     let args = [tangent.x, tangent.y, tangent.z];
-    let frame = R::call(&FUNCTION, args, |[x, y, z]| {
-        let length = (x * x + y * y + z * z).sqrt().max(TINY.get());
-        let t = V3::new(x, y, z).scale(R::c(1.0) / length);
-        let one = R::c(1.0);
-        let s = R::select(t.z.lt(R::c(0.0)), -one, one);
-        let a = -one / (s + t.z);
-        let b = t.x * t.y * a;
-        let n = V3::new(one + s * t.x * t.x * a, s * b, -s * t.x);
-        let bn = V3::new(b, s + t.y * t.y * a, -t.y);
-        [t.x, t.y, t.z, n.x, n.y, n.z, bn.x, bn.y, bn.z]
-    });
+    let frame = R::call(
+        &FUNCTION,
+        args,
+        #[inline(always)]
+        |[x, y, z]| {
+            let length = (x * x + y * y + z * z).sqrt().max(TINY.get());
+            let t = V3::new(x, y, z).scale(R::c(1.0) / length);
+            let one = R::c(1.0);
+            let s = R::select(t.z.lt(R::c(0.0)), -one, one);
+            let a = -one / (s + t.z);
+            let b = t.x * t.y * a;
+            let n = V3::new(one + s * t.x * t.x * a, s * b, -s * t.x);
+            let bn = V3::new(b, s + t.y * t.y * a, -t.y);
+            [t.x, t.y, t.z, n.x, n.y, n.z, bn.x, bn.y, bn.z]
+        },
+    );
     core::array::from_fn(|k| V3::new(frame[3 * k], frame[3 * k + 1], frame[3 * k + 2]))
 }
 

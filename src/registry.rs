@@ -3,13 +3,15 @@
 //! of [`crate::models`], each with its shader form ([`ShaderEntry`]) where it has one.
 
 use crate::bcsdf::REFERENCE_NO_SHADER_FORM;
-use crate::bcsdf::{trace_eval, BatchEval, ChiangFarField, ShaderInputError, ShaderInputs};
+use crate::bcsdf::{
+    trace_eval, BatchEval, ChiangFarField, HostBatch, ShaderInputError, ShaderInputs,
+};
 use crate::bcsdf::{trace_shader, varying_names, InputsIn, UniformBlock, VaryingInputs};
 use crate::bcsdf::{Bcsdf, ChiangHair, FarField, FromInputs, Input, InputValues, Marschner2003};
 use crate::error::ParamError;
 use crate::models::Approximation;
 use crate::params::HairParams;
-use crate::real::{BatchReal, Graph};
+use crate::real::Graph;
 
 /// Builds a model from its input values, evaluated in `f64`.
 pub type BuildModel = fn(&InputValues) -> Result<Box<dyn Bcsdf<f64>>, ParamError>;
@@ -225,12 +227,12 @@ pub struct ApproximationEntry {
     pub build_f32: BuildModelF32,
     /// Traces its evaluation.
     pub trace: TraceModel,
-    /// Builds it on the SIMD lanes of [`BatchReal`].
+    /// Builds it on the SIMD lanes of the host's instruction set ([`HostBatch`]).
     pub build_batch: BuildModelBatch,
 }
 
-/// Builds a model from its input values on the SIMD lanes of [`BatchReal`] (the uniforms
-/// rounded once to `f32`).
+/// Builds a model from its input values on the SIMD lanes of the host's instruction set
+/// ([`HostBatch`]; the uniforms rounded once to `f32`).
 pub type BuildModelBatch = fn(&InputValues) -> Result<Box<dyn BatchEval>, ParamError>;
 
 impl ModelEntry {
@@ -288,7 +290,7 @@ impl ModelEntry {
     pub const fn approximation<M: Approximation + 'static>() -> Self
     where
         M::In<f32>: 'static,
-        M::In<BatchReal>: 'static,
+        HostBatch<M>: 'static,
     {
         ModelEntry {
             approximation: Some(ApproximationEntry {
@@ -312,9 +314,9 @@ where
 
 fn build_batch<M: Approximation>(values: &InputValues) -> Result<Box<dyn BatchEval>, ParamError>
 where
-    M::In<BatchReal>: 'static,
+    HostBatch<M>: 'static,
 {
-    Ok(Box::new(M::from_inputs(values)?.instantiate::<BatchReal>()))
+    Ok(Box::new(HostBatch::new(&M::from_inputs(values)?)))
 }
 
 fn trace<M: Approximation>(values: &InputValues) -> Result<Graph, ParamError> {
@@ -347,7 +349,7 @@ pub const MODELS: &[ModelEntry] = &[
 const fn traced_approximation<M: Approximation + VaryingInputs + 'static>() -> ModelEntry
 where
     M::In<f32>: 'static,
-    M::In<BatchReal>: 'static,
+    HostBatch<M>: 'static,
 {
     ModelEntry::approximation::<M>().with_shader(ShaderEntry::of::<M>())
 }

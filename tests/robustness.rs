@@ -6,8 +6,8 @@ use std::time::{Duration, Instant};
 
 use hairmath::absorption::{Absorption, MAX_MELANIN};
 use hairmath::bcsdf::{
-    eval_batch, BatchError, BatchReal, Bcsdf, ChiangHair, InputValue, Model, Query, SampledBcsdf,
-    UNIT_TOLERANCE,
+    eval_batch, BatchError, BatchReal, Bcsdf, ChiangHair, HostBatch, InputValue, InstructionSet,
+    Model, Query, SampledBcsdf, UNIT_TOLERANCE,
 };
 use hairmath::fresnel::fresnel_dielectric;
 use hairmath::geometry::{FibreFrame, V3};
@@ -140,6 +140,14 @@ fn the_smallest_accepted_roughness_is_finite_in_every_precision() {
     eval_batch(&lanes, &wi, &wo, &h, &mut out).unwrap();
     for (s, q) in out.iter().zip(&queries) {
         assert_finite("chiang SIMD", s, q);
+    }
+    for set in InstructionSet::ALL.into_iter().filter(|s| s.is_supported()) {
+        HostBatch::on(set, &chiang)
+            .eval(&wi, &wo, &h, &mut out)
+            .unwrap();
+        for (s, q) in out.iter().zip(&queries) {
+            assert_finite(&format!("chiang on {set:?}"), s, q);
+        }
     }
     for q in &queries {
         let p = chiang.pdf(q);

@@ -21,14 +21,19 @@ pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES_WITH_RESIDUAL
         "Chiang et al. 2016, eqs. 3 and 6",
         [fresnel, transmittance] -> {r, tt, trt, residual}
     );
-    R::call(&FUNCTION, [f, t], |[f, t]| {
-        let one = R::c(1.0);
-        let a0 = f;
-        let a1 = (one - f).sqr() * t;
-        let a2 = a1 * f * t;
-        let a3 = a2 * f * t / (one - f * t).max(TINY.get());
-        [a0, a1, a2, a3]
-    })
+    R::call(
+        &FUNCTION,
+        [f, t],
+        #[inline(always)]
+        |[f, t]| {
+            let one = R::c(1.0);
+            let a0 = f;
+            let a1 = (one - f).sqr() * t;
+            let a2 = a1 * f * t;
+            let a3 = a2 * f * t / (one - f * t).max(TINY.get());
+            [a0, a1, a2, a3]
+        },
+    )
 }
 
 /// Attenuations for offset `h` of the ray inclined at theta_o (cosine `cos_theta_o`) with

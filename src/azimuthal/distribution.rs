@@ -1,4 +1,4 @@
-use crate::real::{pi, Real, ShaderLoop, Shape};
+use crate::real::{array_from_fn, map_array, pi, Real, ShaderLoop, Shape};
 
 /// `(e, (1 + e)^2)` with `e = e^(-|x| / s)`, from `inv_scale = 1 / s`: the logistic density
 /// is `e / (s (1 + e)^2)`. Written with `|x|` so the exponential never overflows.
@@ -64,21 +64,28 @@ impl<R: Real> TrimmedLogistic<R> {
     /// `D(x_p) = e_p norm prod_{q != p} d_q / prod_q d_q`, `d_q = (1 + e_q)^2` in [1, 4].
     #[inline(always)]
     pub fn densities<const N: usize>(&self, x: [R; N]) -> [R; N] {
-        let parts = x.map(|x| logistic_parts(x, self.inv_scale));
+        let parts = map_array(
+            x,
+            #[inline(always)]
+            |x| logistic_parts(x, self.inv_scale),
+        );
         let mut product = R::c(1.0);
         for &(_, d) in &parts {
             product *= d;
         }
         let r = self.norm / product;
-        core::array::from_fn(|p| {
-            let mut others = r;
-            for (q, &(_, d)) in parts.iter().enumerate() {
-                if q != p {
-                    others *= d;
+        array_from_fn(
+            #[inline(always)]
+            |p| {
+                let mut others = r;
+                for (q, &(_, d)) in parts.iter().enumerate() {
+                    if q != p {
+                        others *= d;
+                    }
                 }
-            }
-            parts[p].0 * others
-        })
+                parts[p].0 * others
+            },
+        )
     }
 
     /// Samples the density from `u` in [0, 1] by inverting its CDF:

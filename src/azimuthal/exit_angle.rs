@@ -11,9 +11,12 @@ pub fn exit_angle<R: Real>(p: R, gamma_i: R, gamma_t: R) -> R {
         "Marschner et al. 2003, eq. 3",
         [p, gamma_i, gamma_t]
     );
-    R::call(&FUNCTION, [p, gamma_i, gamma_t], |[p, gamma_i, gamma_t]| {
-        [R::c(2.0) * p * gamma_t - R::c(2.0) * gamma_i + p * pi::<R>()]
-    })[0]
+    R::call(
+        &FUNCTION,
+        [p, gamma_i, gamma_t],
+        #[inline(always)]
+        |[p, gamma_i, gamma_t]| [R::c(2.0) * p * gamma_t - R::c(2.0) * gamma_i + p * pi::<R>()],
+    )[0]
 }
 
 /// sin(gamma_t) for offset h and a ray inclined at theta (given by its sine and cosine): Snell's

@@ -77,19 +77,24 @@ impl<R: Real> Refraction<R> {
             "Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)",
             [h] -> {gamma_o, gamma_t, segment_length, fresnel}
         );
-        let [gamma_o, gamma_t, segment_length, fresnel] = R::call(&FUNCTION, [h], |[h]| {
-            let one = R::c(1.0);
-            let h = h.clamp(-one, one);
-            let sin_gamma_t = self.sin_gamma_t(h);
-            let cos_gamma_t = safe_sqrt(one - sin_gamma_t * sin_gamma_t);
-            let (cos_gamma_o, fresnel) = entry(self.cos_theta, h, self.eta, self.inv_eta);
-            [
-                h.atan2(cos_gamma_o),
-                sin_gamma_t.atan2(cos_gamma_t),
-                segment_length(cos_gamma_t, self.inv_cos_theta_t, length),
-                fresnel,
-            ]
-        });
+        let [gamma_o, gamma_t, segment_length, fresnel] = R::call(
+            &FUNCTION,
+            [h],
+            #[inline(always)]
+            |[h]| {
+                let one = R::c(1.0);
+                let h = h.clamp(-one, one);
+                let sin_gamma_t = self.sin_gamma_t(h);
+                let cos_gamma_t = safe_sqrt(one - sin_gamma_t * sin_gamma_t);
+                let (cos_gamma_o, fresnel) = entry(self.cos_theta, h, self.eta, self.inv_eta);
+                [
+                    h.atan2(cos_gamma_o),
+                    sin_gamma_t.atan2(cos_gamma_t),
+                    segment_length(cos_gamma_t, self.inv_cos_theta_t, length),
+                    fresnel,
+                ]
+            },
+        );
         FibrePath {
             gamma_o,
             gamma_t,

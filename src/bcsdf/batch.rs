@@ -25,6 +25,9 @@
 
 use wide::{f32x16, f32x8};
 
+#[cfg(target_arch = "x86_64")]
+use crate::real::{Avx2Lanes, Avx512Lanes};
+
 use super::model::{Bcsdf, Query, SampledBcsdf};
 use crate::geometry::V3;
 use crate::real::Real;
@@ -52,6 +55,10 @@ mod sealed {
     pub trait Sealed {}
     impl Sealed for wide::f32x8 {}
     impl Sealed for wide::f32x16 {}
+    #[cfg(target_arch = "x86_64")]
+    impl Sealed for crate::real::Avx512Lanes {}
+    #[cfg(target_arch = "x86_64")]
+    impl Sealed for crate::real::Avx2Lanes {}
 }
 
 macro_rules! impl_batch_lanes {
@@ -60,7 +67,7 @@ macro_rules! impl_batch_lanes {
             const LANES: usize = $n;
             #[inline(always)]
             fn from_fn(f: impl FnMut(usize) -> f32) -> Self {
-                $t::from(core::array::from_fn::<f32, $n, _>(f))
+                $t::from(crate::real::array_from_fn::<f32, $n>(f))
             }
             #[inline(always)]
             fn store(self, out: &mut [f32]) {
@@ -77,6 +84,10 @@ macro_rules! impl_batch_lanes {
 
 impl_batch_lanes!(f32x8, 8);
 impl_batch_lanes!(f32x16, 16);
+#[cfg(target_arch = "x86_64")]
+impl_batch_lanes!(Avx512Lanes, 16);
+#[cfg(target_arch = "x86_64")]
+impl_batch_lanes!(Avx2Lanes, 8);
 
 /// The slices handed to a batch function do not all have the same length.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
@@ -252,9 +263,18 @@ pub(crate) fn check(wi: usize, wo: usize, h: usize, out: usize) -> Result<(), Ba
 #[inline(always)]
 fn load_dirs<L: BatchLanes>(d: &[[f32; 3]]) -> V3<L> {
     V3::new(
-        L::from_fn(|k| d[k][0]),
-        L::from_fn(|k| d[k][1]),
-        L::from_fn(|k| d[k][2]),
+        L::from_fn(
+            #[inline(always)]
+            |k| d[k][0],
+        ),
+        L::from_fn(
+            #[inline(always)]
+            |k| d[k][1],
+        ),
+        L::from_fn(
+            #[inline(always)]
+            |k| d[k][2],
+        ),
     )
 }
 
@@ -276,7 +296,11 @@ fn for_each_chunk<L: BatchLanes, T: Copy>(
         .zip(h[..full].chunks_exact(n))
         .zip(out[..full].chunks_exact_mut(n));
     for (((wi, wo), h), out) in chunks {
-        f(load_dirs(wi), load_dirs(wo), L::from_fn(|k| h[k]), out);
+        let h = L::from_fn(
+            #[inline(always)]
+            |k| h[k],
+        );
+        f(load_dirs(wi), load_dirs(wo), h, out);
     }
     let rest = wi.len() - full;
     if rest > 0 {
@@ -335,6 +359,8 @@ pub fn eval_batch<L: BatchLanes, M: Bcsdf<L>>(
 }
 
 /// [`eval_batch`] of samples already checked (equal lengths, unit directions, no NaN offset).
+/// Always inlined, with its closure, into the per-instruction-set copies of [`super::HostBatch`].
+#[inline(always)]
 pub(crate) fn eval_checked<L: BatchLanes, M: Bcsdf<L>>(
     model: &M,
     wi: &[[f32; 3]],
@@ -342,15 +368,22 @@ pub(crate) fn eval_checked<L: BatchLanes, M: Bcsdf<L>>(
     h: &[f32],
     out: &mut [[f32; 3]],
 ) {
-    for_each_chunk(wi, wo, h, out, |wi, wo, h, out| {
-        let mut rgb = [[0.0_f32; MAX_LANES]; 3];
-        for (lanes, value) in rgb.iter_mut().zip(model.eval(&Query::new(wi, wo, h))) {
-            value.store(&mut lanes[..L::LANES]);
-        }
-        for (k, slot) in out.iter_mut().enumerate().take(L::LANES) {
-            *slot = [rgb[0][k], rgb[1][k], rgb[2][k]];
-        }
-    });
+    for_each_chunk(
+        wi,
+        wo,
+        h,
+        out,
+        #[inline(always)]
+        |wi, wo, h, out| {
+            let mut rgb = [[0.0_f32; MAX_LANES]; 3];
+            for (lanes, value) in rgb.iter_mut().zip(model.eval(&Query::new(wi, wo, h))) {
+                value.store(&mut lanes[..L::LANES]);
+            }
+            for (k, slot) in out.iter_mut().enumerate().take(L::LANES) {
+                *slot = [rgb[0][k], rgb[1][k], rgb[2][k]];
+            }
+        },
+    );
 }
 
 /// Directions as a structure of arrays: sample `k` is `(x[k], y[k], z[k])` (local frame, as
@@ -409,13 +442,36 @@ pub fn eval_batch_soa<L: BatchLanes, M: Bcsdf<L>>(
     h: &[f32],
     out: RgbSlices<'_>,
 ) -> Result<(), BatchError> {
+    check_soa(&wi, &wo, h, &out)?;
+    eval_soa_checked(model, wi, wo, h, out);
+    Ok(())
+}
+
+/// The checks of [`eval_batch_soa`]: lengths, then samples.
+pub(crate) fn check_soa(
+    wi: &DirectionSlices,
+    wo: &DirectionSlices,
+    h: &[f32],
+    out: &RgbSlices,
+) -> Result<(), BatchError> {
     let outputs = [
         ("out.r", out.r.len()),
         ("out.g", out.g.len()),
         ("out.b", out.b.len()),
     ];
-    check_components(&wi, &wo, h, &outputs)?;
-    check_soa_samples(&wi, &wo, h)?;
+    check_components(wi, wo, h, &outputs)?;
+    check_soa_samples(wi, wo, h)
+}
+
+/// [`eval_batch_soa`] of samples already checked (always inlined, as [`eval_checked`]).
+#[inline(always)]
+pub(crate) fn eval_soa_checked<L: BatchLanes, M: Bcsdf<L>>(
+    model: &M,
+    wi: DirectionSlices<'_>,
+    wo: DirectionSlices<'_>,
+    h: &[f32],
+    out: RgbSlices<'_>,
+) {
     let len = h.len();
     for start in (0..len).step_by(L::LANES) {
         let lanes = |s: &[f32], fill: f32| soa_lanes::<L>(s, start, fill);
@@ -435,14 +491,16 @@ pub fn eval_batch_soa<L: BatchLanes, M: Bcsdf<L>>(
             v.store(&mut channel[start..end]);
         }
     }
-    Ok(())
 }
 
 /// `L::LANES` values of `s` from `start`, padded with `fill` past its end.
 #[inline(always)]
 fn soa_lanes<L: BatchLanes>(s: &[f32], start: usize, fill: f32) -> L {
     match s.get(start..start + L::LANES) {
-        Some(chunk) => L::from_fn(|k| chunk[k]),
+        Some(chunk) => L::from_fn(
+            #[inline(always)]
+            |k| chunk[k],
+        ),
         None => L::from_fn(|k| s.get(start + k).copied().unwrap_or(fill)),
     }
 }
@@ -556,10 +614,17 @@ pub(crate) fn pdf_checked<L: BatchLanes, M: SampledBcsdf<L>>(
     h: &[f32],
     out: &mut [f32],
 ) {
-    for_each_chunk(wi, wo, h, out, |wi, wo, h, out| {
-        let n = out.len().min(L::LANES);
-        model.pdf(&Query::new(wi, wo, h)).store(&mut out[..n]);
-    });
+    for_each_chunk(
+        wi,
+        wo,
+        h,
+        out,
+        #[inline(always)]
+        |wi, wo, h, out| {
+            let n = out.len().min(L::LANES);
+            model.pdf(&Query::new(wi, wo, h)).store(&mut out[..n]);
+        },
+    );
 }
 
 /// Samples per task of the parallel batch, a multiple of every lane count: tens of
@@ -614,7 +679,7 @@ pub fn par_pdf_batch<L: BatchLanes, M: SampledBcsdf<L> + Sync>(
 
 /// Runs `f` on chunks of [`PARALLEL_CHUNK`] samples in parallel (lengths already checked).
 #[cfg(feature = "parallel")]
-fn for_each_parallel_chunk<T: Send>(
+pub(crate) fn for_each_parallel_chunk<T: Send>(
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],
     h: &[f32],
@@ -630,7 +695,7 @@ fn for_each_parallel_chunk<T: Send>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::bcsdf::{ChiangHair, Model};
     use crate::params::HairParams;
@@ -638,7 +703,7 @@ mod tests {
     use rand_pcg::Pcg64Mcg;
 
     /// beta_m = beta_n = 0.3, a 2 degree tilt, eta = 1.55, eumelanin 1.3.
-    fn model() -> ChiangHair<f64> {
+    pub(crate) fn model() -> ChiangHair<f64> {
         ChiangHair::new(&HairParams::default())
     }
 
@@ -649,13 +714,13 @@ mod tests {
         [(r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32]
     }
 
-    fn v3<R: crate::real::Real>(d: [f32; 3]) -> V3<R> {
+    pub(crate) fn v3<R: crate::real::Real>(d: [f32; 3]) -> V3<R> {
         V3::from_f64(d[0] as f64, d[1] as f64, d[2] as f64)
     }
 
     /// Random directions and offsets followed by the hard cases: grazing wi/wo (x = +-1),
     /// h = +-1, wi = wo, wi = -wo. An odd length exercises the padded tail.
-    fn inputs(n: usize) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<f32>) {
+    pub(crate) fn inputs(n: usize) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<f32>) {
         let mut rng = Pcg64Mcg::seed_from_u64(0x5eed);
         let (mut wi, mut wo, mut h) = (Vec::new(), Vec::new(), Vec::new());
         for _ in 0..n {
@@ -708,7 +773,7 @@ mod tests {
     }
 
     /// max over samples and channels of |x - ref| / (|ref| + floor).
-    fn max_rel(x: &[[f32; 3]], reference: &[[f64; 3]], floor: f64) -> (f64, usize) {
+    pub(crate) fn max_rel(x: &[[f32; 3]], reference: &[[f64; 3]], floor: f64) -> (f64, usize) {
         let mut worst = (0.0, 0);
         for (k, (a, b)) in x.iter().zip(reference).enumerate() {
             for c in 0..3 {

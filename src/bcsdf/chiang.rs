@@ -39,7 +39,9 @@ use crate::geometry::{
 };
 use crate::lobe::{deon_lobe_sample_cos_theta, BesselForm, DeonLobe};
 use crate::params::HairParams;
-use crate::real::{pi, powi, safe_sqrt, wrap_angle, Real, ShaderFunction, INV_TWO_PI};
+use crate::real::{
+    array_from_fn, map_array, pi, powi, safe_sqrt, wrap_angle, Real, ShaderFunction, INV_TWO_PI,
+};
 
 /// The names of the four lobes, in the order of every per-lobe array of the Chiang models.
 pub const CHIANG_LOBES: [&str; LOBES_WITH_RESIDUAL] = ["R", "TT", "TRT", "residual"];
@@ -254,6 +256,7 @@ impl<R: Real> Offsets<R> for AtOffset {
         h
     }
 
+    #[inline(always)]
     fn azimuthal<O, const WITH_PDF: bool>(
         &self,
         hair: &ChiangHair<R, O>,
@@ -278,17 +281,22 @@ pub(crate) struct LobeTerms<R> {
 
 impl<R: Real> LobeTerms<R> {
     /// `S = sum_p M_p A_p N_p` per channel.
+    #[inline(always)]
     pub fn value(&self) -> [R; 3] {
-        core::array::from_fn(|c| {
-            let mut sum = R::c(0.0);
-            for (m, an) in self.m.iter().zip(&self.an) {
-                sum += *m * an[c];
-            }
-            sum
-        })
+        array_from_fn(
+            #[inline(always)]
+            |c| {
+                let mut sum = R::c(0.0);
+                for (m, an) in self.m.iter().zip(&self.an) {
+                    sum += *m * an[c];
+                }
+                sum
+            },
+        )
     }
 
     /// `pdf = sum_p M_p w_p N_p`.
+    #[inline(always)]
     pub fn pdf(&self) -> R {
         let mut pdf = R::c(0.0);
         for (m, wn) in self.m.iter().zip(&self.wn) {
@@ -434,15 +442,25 @@ impl<R: Real, O> ChiangHair<R, O> {
     ) -> (FibrePath<R>, [[R; 3]; LOBES_WITH_RESIDUAL]) {
         let u = &self.uniforms;
         let path = Refraction::new(sin_o, cos_o, u.eta, u.inv_eta).path(h, PathLength::Chord);
-        let per_channel = u.sigma_a.map(|sa| path.attenuations(sa));
-        let a = core::array::from_fn(|p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]]);
+        let per_channel = map_array(
+            u.sigma_a,
+            #[inline(always)]
+            |sa| path.attenuations(sa),
+        );
+        let a = array_from_fn(
+            #[inline(always)]
+            |p| [per_channel[0][p], per_channel[1][p], per_channel[2][p]],
+        );
         (path, a)
     }
 
     /// M_p for p = 0..3 with the tilt of each lobe.
     #[inline(always)]
     pub(crate) fn longitudinal(&self, angles: &PairAngles<R>) -> [R; LOBES_WITH_RESIDUAL] {
-        core::array::from_fn(|p| self.longitudinal_lobe(p, BesselForm::Full, angles))
+        array_from_fn(
+            #[inline(always)]
+            |p| self.longitudinal_lobe(p, BesselForm::Full, angles),
+        )
     }
 
     /// M_p of lobe `p` with its tilt, its Bessel function by `form`.
@@ -471,24 +489,43 @@ impl<R: Real, O> ChiangHair<R, O> {
         at: Outgoing<R>,
     ) -> AzimuthalFactors<R> {
         let (path, a) = self.attenuations_at(at.sin_o, at.cos_o, at.h);
-        let dphi: [R; 3] = core::array::from_fn(|p| {
-            wrap_angle(at.phi - exit_angle(R::c(p as f64), path.gamma_o, path.gamma_t))
-        });
+        let dphi: [R; 3] = array_from_fn(
+            #[inline(always)]
+            |p| wrap_angle(at.phi - exit_angle(R::c(p as f64), path.gamma_o, path.gamma_t)),
+        );
         // N_p of R, TT and TRT about their exit angles, as one shader function.
         const DISTRIBUTIONS: ShaderFunction = crate::shader_function!(
             trimmed_logistics,
             "Chiang et al. 2016, eq. 13",
             [dphi_r, dphi_tt, dphi_trt] -> {r, tt, trt}
         );
-        let [n0, n1, n2] = R::call(&DISTRIBUTIONS, dphi, |dphi| self.logistic().densities(dphi));
+        let [n0, n1, n2] = R::call(
+            &DISTRIBUTIONS,
+            dphi,
+            #[inline(always)]
+            |dphi| self.logistic().densities(dphi),
+        );
         let n = [n0, n1, n2, INV_TWO_PI.get()];
         let wn = if WITH_PDF {
             let w = lobe_weights(&a);
-            core::array::from_fn(|p| w[p] * n[p])
+            array_from_fn(
+                #[inline(always)]
+                |p| w[p] * n[p],
+            )
         } else {
             [R::c(0.0); LOBES_WITH_RESIDUAL]
         };
-        (core::array::from_fn(|p| a[p].map(|x| x * n[p])), wn)
+        let an = array_from_fn(
+            #[inline(always)]
+            |p| {
+                map_array(
+                    a[p],
+                    #[inline(always)]
+                    |x| x * n[p],
+                )
+            },
+        );
+        (an, wn)
     }
 
     /// The lobe factors for a query and an azimuthal part computed by `azimuthal` from
@@ -567,10 +604,19 @@ impl<R: Real, O> ChiangHair<R, O> {
 
 /// Probability of choosing each lobe when sampling from wo: the channel-averaged A_p,
 /// normalised (pbrt-v4 `ApPDF`).
+#[inline(always)]
 fn lobe_weights<R: Real>(a: &[[R; 3]; LOBES_WITH_RESIDUAL]) -> [R; LOBES_WITH_RESIDUAL] {
-    let avg = a.map(|ch| (ch[0] + ch[1] + ch[2]) * R::c(1.0 / 3.0));
+    let avg = map_array(
+        *a,
+        #[inline(always)]
+        |ch| (ch[0] + ch[1] + ch[2]) * R::c(1.0 / 3.0),
+    );
     let total = (avg[0] + avg[1] + avg[2] + avg[3]).max(R::c(1e-30));
-    avg.map(|x| x / total)
+    map_array(
+        avg,
+        #[inline(always)]
+        |x| x / total,
+    )
 }
 
 impl<R: Real, O: Offsets<R>> ChiangHair<R, O> {
@@ -578,7 +624,11 @@ impl<R: Real, O: Offsets<R>> ChiangHair<R, O> {
     /// only `WITH_PDF`).
     #[inline(always)]
     fn terms<const WITH_PDF: bool>(&self, query: &Query<R>) -> LobeTerms<R> {
-        self.terms_with(query, |at| self.offsets.azimuthal::<O, WITH_PDF>(self, at))
+        self.terms_with(
+            query,
+            #[inline(always)]
+            |at| self.offsets.azimuthal::<O, WITH_PDF>(self, at),
+        )
     }
 }
 
@@ -593,7 +643,9 @@ impl<R: Real, O: Offsets<R>> Bcsdf<R> for ChiangHair<R, O> {
 
     /// `S(wi, wo, h)` per channel for unit `wi`, `wo` in the local frame and offset `h` in
     /// [-1, 1] (clamped; ignored by the far field). No cosine factor (see the module
-    /// documentation). Finite and non-negative for every finite input.
+    /// documentation). Finite and non-negative for every finite input. Inlined into the
+    /// batch kernels' copies per instruction set ([`crate::real::InstructionSet`]).
+    #[inline(always)]
     fn eval(&self, query: &Query<R>) -> [R; 3] {
         self.terms::<false>(query).value()
     }
@@ -607,6 +659,7 @@ impl<R: Real, O: Offsets<R>> Bcsdf<R> for ChiangHair<R, O> {
 impl<R: Real, O: Offsets<R>> SampledBcsdf<R> for ChiangHair<R, O> {
     /// The density of [`SampledBcsdf::sample`]: `sum_p M_p w_p N_p` with the lobe-choice
     /// probabilities w_p of pbrt-v4's `ApPDF` (averaged over the offsets for the far field).
+    #[inline(always)]
     fn pdf(&self, query: &Query<R>) -> R {
         self.terms::<true>(query).pdf()
     }

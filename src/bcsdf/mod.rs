@@ -17,11 +17,13 @@
 mod batch;
 mod chiang;
 mod far_field;
+mod host;
 mod inputs;
 mod marschner;
 mod model;
 mod varying;
 
+pub use crate::real::InstructionSet;
 pub(crate) use batch::{check as check_lengths, check_samples, eval_checked, pdf_checked};
 pub use batch::{
     eval_batch, eval_batch_soa, pdf_batch, BatchError, BatchEval, BatchLanes, BatchLengthError,
@@ -39,6 +41,7 @@ pub use far_field::{
     DEFAULT_FAR_FIELD_NODES, FAR_FIELD_ERROR_BOUNDS, MAX_FAR_FIELD_NODES, REFERENCE_NO_SHADER_FORM,
     REFERENCE_REL_TOL,
 };
+pub use host::HostBatch;
 pub use inputs::{
     AbsorptionInput, FromInputs, Input, InputKind, InputValue, InputValues, HAIR_INPUTS,
 };

@@ -64,7 +64,11 @@ const ASYMPTOTIC: [f64; ASYMPTOTIC_TERMS] = {
 pub fn i0e_split<R: Real>(x: R) -> (R, R) {
     match R::DOUBLE {
         true => split(x, series_double),
-        false => split(x, |x| ABRAMOWITZ_STEGUN.eval(x)),
+        false => split(
+            x,
+            #[inline(always)]
+            |x| ABRAMOWITZ_STEGUN.eval(x),
+        ),
     }
 }
 
@@ -72,7 +76,11 @@ pub fn i0e_split<R: Real>(x: R) -> (R, R) {
 /// error at most 1.49e-4, for lobes whose error budget is far above the precision's.
 #[inline(always)]
 pub fn i0e_split_reduced<R: Real>(x: R) -> (R, R) {
-    split(x, |x| REDUCED.eval(x))
+    split(
+        x,
+        #[inline(always)]
+        |x| REDUCED.eval(x),
+    )
 }
 
 /// Which approximation of `I0(x) e^-x` a lobe evaluates.

@@ -66,18 +66,23 @@ impl<R: Real> DeonLobe<R> {
             BesselForm::Reduced => &REDUCED,
         };
         let args = [sin_i, cos_i, sin_o, cos_o];
-        R::call(function, args, |[sin_i, cos_i, sin_o, cos_o]| {
-            let one = R::c(1.0);
-            let cos_sum = cos_i * cos_o - sin_i * sin_o;
-            let sin_sum = sin_i * cos_o + cos_i * sin_o;
-            let one_minus_cos = R::select(
-                R::c(0.0).lt(cos_sum),
-                sin_sum * sin_sum / (one + cos_sum.max(R::c(0.0))),
-                one - cos_sum,
-            );
-            let (scale, shift) = form.i0e_split(cos_i * cos_o * self.inv_v);
-            [self.norm * scale * (shift - one_minus_cos * self.inv_v).exp()]
-        })[0]
+        R::call(
+            function,
+            args,
+            #[inline(always)]
+            |[sin_i, cos_i, sin_o, cos_o]| {
+                let one = R::c(1.0);
+                let cos_sum = cos_i * cos_o - sin_i * sin_o;
+                let sin_sum = sin_i * cos_o + cos_i * sin_o;
+                let one_minus_cos = R::select(
+                    R::c(0.0).lt(cos_sum),
+                    sin_sum * sin_sum / (one + cos_sum.max(R::c(0.0))),
+                    one - cos_sum,
+                );
+                let (scale, shift) = form.i0e_split(cos_i * cos_o * self.inv_v);
+                [self.norm * scale * (shift - one_minus_cos * self.inv_v).exp()]
+            },
+        )[0]
     }
 }
 

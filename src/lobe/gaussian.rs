@@ -8,8 +8,13 @@ use crate::real::{Real, ShaderFunction, SQRT_TWO_PI};
 pub fn gaussian_lobe<R: Real>(beta: R, x: R) -> R {
     const FUNCTION: ShaderFunction =
         crate::shader_function!(gaussian_lobe, "Marschner et al. 2003, eq. 6", [beta, x]);
-    R::call(&FUNCTION, [beta, x], |[beta, x]| {
-        let z = x / beta;
-        [(R::c(-0.5) * z * z).exp() / (beta * SQRT_TWO_PI.get::<R>())]
-    })[0]
+    R::call(
+        &FUNCTION,
+        [beta, x],
+        #[inline(always)]
+        |[beta, x]| {
+            let z = x / beta;
+            [(R::c(-0.5) * z * z).exp() / (beta * SQRT_TWO_PI.get::<R>())]
+        },
+    )[0]
 }

@@ -62,11 +62,16 @@ impl HenyeyGreenstein {
             "Henyey and Greenstein 1941, normalised on the hair's circle (Gerard et al. 2023)",
             [cos_theta]
         );
-        R::call(&FUNCTION, [cos_theta], |[cos_theta]| {
-            let g = R::c(self.g);
-            let d = R::c(1.0) + g * g - R::c(2.0) * g * cos_theta;
-            [R::c((1.0 - self.g * self.g) * self.inverse_norm) / (d * d.sqrt())]
-        })[0]
+        R::call(
+            &FUNCTION,
+            [cos_theta],
+            #[inline(always)]
+            |[cos_theta]| {
+                let g = R::c(self.g);
+                let d = R::c(1.0) + g * g - R::c(2.0) * g * cos_theta;
+                [R::c((1.0 - self.g * self.g) * self.inverse_norm) / (d * d.sqrt())]
+            },
+        )[0]
     }
 }
 

@@ -24,9 +24,12 @@ use crate::real::{pi, Real, ShaderFunction};
 pub fn tt_gaussian<R: Real>(phi: R, a: R, b: R) -> R {
     const FUNCTION: ShaderFunction =
         crate::shader_function!(tt_gaussian, "Tafuri 2019, slide 19", [phi, a, b]);
-    R::call(&FUNCTION, [phi, a, b], |[phi, a, b]| {
-        [a * (-b * (phi.abs() - pi::<R>()).sqr()).exp()]
-    })[0]
+    R::call(
+        &FUNCTION,
+        [phi, a, b],
+        #[inline(always)]
+        |[phi, a, b]| [a * (-b * (phi.abs() - pi::<R>()).sqr()).exp()],
+    )[0]
 }
 
 /// A transmitted lobe whose attenuation Frostbite evaluates at a single offset.

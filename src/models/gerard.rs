@@ -49,13 +49,18 @@ fn g_polynomial<R: Real>(beta: R, coefficients: &[f64]) -> R {
         "Gerard et al. 2023, g(beta) as a polynomial in sqrt(beta)",
         [beta]
     );
-    R::call(&FUNCTION, [beta], |[beta]| {
-        let (lo, hi) = HG_G_BETA_DOMAIN;
-        [horner(
-            beta.max(R::c(lo)).min(R::c(hi)).sqrt(),
-            coefficients,
-        )]
-    })[0]
+    R::call(
+        &FUNCTION,
+        [beta],
+        #[inline(always)]
+        |[beta]| {
+            let (lo, hi) = HG_G_BETA_DOMAIN;
+            [horner(
+                beta.max(R::c(lo)).min(R::c(hi)).sqrt(),
+                coefficients,
+            )]
+        },
+    )[0]
 }
 
 /// Gerard's absorption exponent of the TT lobe, `e^(-4 sigma_a)` (his eqs. 8 and 12): k = 4,

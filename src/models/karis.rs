@@ -194,9 +194,12 @@ pub fn scaled_eta_prime_karis<R: Real>(cos_theta_d: R, c: EtaPrimeCoefficients<R
         "Karis 2016 (Bravais' index times cos theta_d)",
         [cos_theta_d, a, b]
     );
-    R::call(&FUNCTION, [cos_theta_d, c.a, c.b], |[cos_theta_d, a, b]| {
-        [a + b * cos_theta_d * cos_theta_d]
-    })[0]
+    R::call(
+        &FUNCTION,
+        [cos_theta_d, c.a, c.b],
+        #[inline(always)]
+        |[cos_theta_d, a, b]| [a + b * cos_theta_d * cos_theta_d],
+    )[0]
 }
 
 /// `1 / eta'` of Karis' Bravais index ([`scaled_eta_prime_karis`]):
@@ -231,9 +234,12 @@ pub fn d_karis_of_cos<R: Real>(cos_phi: R, c: ExpCosCoefficients<R>) -> R {
         "Karis 2016 (D ~ exp(a cos phi + b))",
         [cos_phi, a, b]
     );
-    R::call(&FUNCTION, [cos_phi, c.a, c.b], |[cos_phi, a, b]| {
-        [(a * cos_phi + b).exp()]
-    })[0]
+    R::call(
+        &FUNCTION,
+        [cos_phi, c.a, c.b],
+        #[inline(always)]
+        |[cos_phi, a, b]| [(a * cos_phi + b).exp()],
+    )[0]
 }
 
 /// Karis' TT offset `h_TT ~ (1 + a (c1 - c2 cos phi)) cos(phi/2)` (Karis 2016; `HairBsdf.ush`
@@ -257,7 +263,10 @@ pub fn h_tt_karis_of_cos<R: Real>(a: R, cos_phi: R, cos_half_phi: R, c: HTtCoeff
         [a, cos_phi, cos_half_phi, c1, c2]
     );
     let args = [a, cos_phi, cos_half_phi, c.c1, c.c2];
-    R::call(&FUNCTION, args, |[a, cos_phi, cos_half_phi, c1, c2]| {
-        [(R::c(1.0) + a * (c1 - c2 * cos_phi)) * cos_half_phi]
-    })[0]
+    R::call(
+        &FUNCTION,
+        args,
+        #[inline(always)]
+        |[a, cos_phi, cos_half_phi, c1, c2]| [(R::c(1.0) + a * (c1 - c2 * cos_phi)) * cos_half_phi],
+    )[0]
 }

@@ -6,7 +6,8 @@
 //! | --- | --- |
 //! | `f64` | the reference: fits, tables, tests, error reports |
 //! | `f32` | CPU renderers and benchmarks |
-//! | [`wide::f32x8`] | eight samples per instruction for batch evaluation ([`BatchReal`]) |
+//! | [`wide::f32x8`], [`wide::f32x16`] | eight or sixteen samples per value for batch evaluation ([`BatchReal`]), with the build's instructions |
+//! | AVX-512 and AVX2 lanes (crate-private) | batch evaluation on the host's instruction set, chosen at run time ([`crate::bcsdf::HostBatch`]) |
 //! | [`Traced`] | records the computation as a graph that prints as WGSL ([`trace`]) |
 //!
 //! Rules for generic code (they keep the traced graph equal to the CPU computation):
@@ -18,6 +19,8 @@
 //! [`SharedTable`]: multilinear interpolation, clamp to the edge, with the semantics of
 //! [`crate::lut::Table::lookup_into`] in every instantiation.
 
+mod dispatch;
+mod isa;
 mod named;
 mod simd;
 mod structure;
@@ -28,6 +31,11 @@ use core::ops::{Add, AddAssign, BitAnd, BitOr, Div, Mul, MulAssign, Neg, Not, Su
 
 use crate::lut::SharedTable;
 
+pub use dispatch::InstructionSet;
+#[cfg(target_arch = "x86_64")]
+pub(crate) use dispatch::{with_avx2, with_avx512};
+#[cfg(target_arch = "x86_64")]
+pub(crate) use isa::{Avx2Lanes, Avx512Lanes};
 pub use named::{NamedConstant, FOUR_PI, INV_TWO_PI, PI, SQRT_2, SQRT_TWO_PI, TINY, TWO_PI};
 pub use simd::BatchReal;
 pub use structure::{
@@ -172,18 +180,22 @@ pub trait Real:
     }
 
     /// `self > other`.
+    #[inline(always)]
     fn gt(self, other: Self) -> Self::Mask {
         other.lt(self)
     }
     /// `self >= other`.
+    #[inline(always)]
     fn ge(self, other: Self) -> Self::Mask {
         other.le(self)
     }
     /// `self * self`.
+    #[inline(always)]
     fn sqr(self) -> Self {
         self * self
     }
     /// The value clamped to `[lo, hi]`.
+    #[inline(always)]
     fn clamp(self, lo: Self, hi: Self) -> Self {
         self.max(lo).min(hi)
     }
@@ -333,22 +345,66 @@ pub(crate) fn powi<R: Real>(x: R, n: u32) -> R {
 /// Evaluates the polynomial `c[0] + c[1] x + c[2] x^2 + ...` by Horner's rule.
 #[inline(always)]
 pub fn horner<R: Real>(x: R, coefficients: &[f64]) -> R {
-    horner_highest_first(x, coefficients.iter().rev().map(|&c| R::c(c)))
+    horner_by_power(
+        x,
+        coefficients.len(),
+        #[inline(always)]
+        |k| R::c(coefficients[k]),
+    )
 }
 
 /// [`horner`] of a named table of coefficients (lowest power first), which shader code reads
 /// by name.
 #[inline(always)]
 pub fn horner_named<R: Real>(x: R, coefficients: &'static NamedConstant) -> R {
-    let n = coefficients.values.len();
-    horner_highest_first(x, (0..n).rev().map(|k| coefficients.at(k)))
+    horner_by_power(
+        x,
+        coefficients.values.len(),
+        #[inline(always)]
+        |k| coefficients.at(k),
+    )
 }
 
-/// Horner's rule over the coefficients from the highest power down (0 for none).
+/// Horner's rule over `n` coefficients, `coefficient(k)` that of `x^k` (0 for none): a plain
+/// loop, so that batch kernels inline it ([`array_from_fn`]).
 #[inline(always)]
-fn horner_highest_first<R: Real>(x: R, mut highest_first: impl Iterator<Item = R>) -> R {
-    let first = highest_first.next().unwrap_or_else(|| R::c(0.0));
-    highest_first.fold(first, |acc, c| acc * x + c)
+fn horner_by_power<R: Real>(x: R, n: usize, coefficient: impl Fn(usize) -> R) -> R {
+    let Some(mut power) = n.checked_sub(1) else {
+        return R::c(0.0);
+    };
+    let mut sum = coefficient(power);
+    while power > 0 {
+        power -= 1;
+        sum = sum * x + coefficient(power);
+    }
+    sum
+}
+
+/// `core::array::from_fn`, always inlined. Batch kernels are compiled once per instruction set
+/// by inlining them into functions with those target features ([`InstructionSet`]); std's
+/// `from_fn` and `map` are functions of their own that the inliner may keep, and a function
+/// that is not inlined runs with the build's baseline instructions. Kernels use these helpers
+/// with `#[inline(always)]` closures on their hot paths.
+#[inline(always)]
+pub(crate) fn array_from_fn<T: Copy, const N: usize>(mut f: impl FnMut(usize) -> T) -> [T; N] {
+    const { assert!(N > 0, "array_from_fn builds non-empty arrays") };
+    let mut out = [f(0); N];
+    for (k, slot) in out.iter_mut().enumerate().skip(1) {
+        *slot = f(k);
+    }
+    out
+}
+
+/// `array.map(f)`, always inlined (see [`array_from_fn`]).
+#[inline(always)]
+pub(crate) fn map_array<T: Copy, U: Copy, const N: usize>(
+    array: [T; N],
+    mut f: impl FnMut(T) -> U,
+) -> [U; N] {
+    array_from_fn(
+        #[inline(always)]
+        |k| f(array[k]),
+    )
 }
 
 #[cfg(test)]

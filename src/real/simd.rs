@@ -1,25 +1,52 @@
 //! Eight or sixteen single-precision lanes per value: the same generic code evaluates eight
-//! ([`f32x8`]) or sixteen ([`f32x16`]) samples at once. Transcendental functions are `wide`'s
-//! vectorised polynomial approximations, so results differ from the scalar `f32` instantiation
-//! by a few ulp (the tests bound the difference).
+//! ([`f32x8`]) or sixteen ([`f32x16`]) samples at once. Transcendental functions are
+//! vectorised polynomial approximations, so results differ from the scalar `f32`
+//! instantiation by a few ulp (the tests bound the difference). The lane algorithms here
+//! (`exp`, `atan2`, `floor`) serve the instruction-set lanes of [`super::isa`] too.
 //!
-//! Which width is fastest depends on the target features the crate is compiled with: `wide`
-//! maps [`f32x16`] to one AVX-512 register when `avx512f` is enabled (e.g.
-//! `RUSTFLAGS="-C target-cpu=native"` on an AVX-512 machine) and to two [`f32x8`] halves
-//! otherwise. [`BatchReal`] names the faster one for the current target.
+//! `wide` maps [`f32x16`] to one AVX-512 register when the crate is compiled with `avx512f`
+//! (e.g. `RUSTFLAGS="-C target-cpu=native"` on an AVX-512 machine) and to two [`f32x8`] halves
+//! otherwise: `wide`'s types run the instructions of the build, not of the machine.
+//! [`crate::bcsdf::HostBatch`] runs those of the machine, chosen at run time.
 
+#[cfg(target_arch = "x86_64")]
+use super::isa::{Avx2Lanes, Avx512Lanes};
 use super::Real;
 use crate::lut::SharedTable;
 use wide::{f32x16, f32x8, i32x16, i32x8};
 
-/// The lane type batch evaluation uses by default: [`f32x16`] when the crate is compiled with
-/// AVX-512 (one zmm register per value), [`f32x8`] otherwise.
+/// The `wide` lane type for the compilation target: [`f32x16`] when the crate is compiled with
+/// AVX-512 (one zmm register per value), [`f32x8`] otherwise. [`crate::bcsdf::HostBatch`]
+/// evaluates on the baseline with it.
 #[cfg(target_feature = "avx512f")]
 pub type BatchReal = f32x16;
-/// The lane type batch evaluation uses by default: [`f32x16`] when the crate is compiled with
-/// AVX-512 (one zmm register per value), [`f32x8`] otherwise.
+/// The `wide` lane type for the compilation target: [`f32x16`] when the crate is compiled with
+/// AVX-512 (one zmm register per value), [`f32x8`] otherwise. [`crate::bcsdf::HostBatch`]
+/// evaluates on the baseline with it.
 #[cfg(not(target_feature = "avx512f"))]
 pub type BatchReal = f32x8;
+
+/// `2^r` from `r + 2^23 + 127` (r an integer in [-126, 127]): the low bits of that float are
+/// the biased exponent `r + 127`, shifted here into the exponent field.
+pub(crate) trait ExponentField: Sized {
+    /// The float whose bits are `biased`'s shifted left by 23.
+    fn shifted_into_exponent(biased: Self) -> Self;
+}
+
+macro_rules! exponent_field_through_integers {
+    ($t:ident, $i:ident) => {
+        impl ExponentField for $t {
+            #[inline(always)]
+            fn shifted_into_exponent(biased: Self) -> Self {
+                let bits: $i = wide::bytemuck::cast(biased);
+                wide::bytemuck::cast(bits << 23)
+            }
+        }
+    };
+}
+
+exponent_field_through_integers!(f32x8, i32x8);
+exponent_field_through_integers!(f32x16, i32x16);
 
 /// `floor` in vector instructions only, equal to `f32::floor` in every lane for every input
 /// (signed zeros and NaN included): `|x| < 2^23` is rounded to the nearest integer by adding
@@ -46,7 +73,7 @@ macro_rules! floor_without_sse41 {
 /// grows to ln 2 and the error to about 1e-6 relative), then three selects restore the edges: 0 below -87.34
 /// (where `f32::exp` gives subnormals under 1.2e-38), infinity above 88.72, NaN for NaN.
 macro_rules! lean_exp {
-    ($t:ident, $i:ident, $x:expr) => {{
+    ($t:ident, $x:expr) => {{
         let x: $t = $x;
         let lo = $t::splat(-87.336_54);
         let hi = $t::splat(88.722_83);
@@ -62,8 +89,7 @@ macro_rules! lean_exp {
         }
         let z = z.mul_add(f * f, f) + $t::ONE;
         // 2^r for integer r in [-126, 127]: the biased exponent r + 127 shifted into place.
-        let biased: $i = wide::bytemuck::cast(r + $t::splat(8_388_608.0 + 127.0));
-        let scale: $t = wide::bytemuck::cast(biased << 23);
+        let scale = ExponentField::shifted_into_exponent(r + $t::splat(8_388_608.0 + 127.0));
         let result = z * scale;
         let result = x.simd_lt(lo).select($t::ZERO, result);
         let result = hi.simd_lt(x).select($t::splat(f32::INFINITY), result);
@@ -101,7 +127,7 @@ macro_rules! lean_atan2 {
 }
 
 macro_rules! impl_real_for_lanes {
-    ($t:ident, $i:ident, $lanes:expr) => {
+    ($t:ident, $lanes:expr) => {
         impl Real for $t {
             /// A lane mask: all bits set where the comparison holds.
             type Mask = $t;
@@ -117,7 +143,7 @@ macro_rules! impl_real_for_lanes {
             }
             #[inline(always)]
             fn exp(self) -> Self {
-                lean_exp!($t, $i, self)
+                lean_exp!($t, self)
             }
             #[inline(always)]
             fn ln(self) -> Self {
@@ -196,8 +222,12 @@ macro_rules! impl_real_for_lanes {
     };
 }
 
-impl_real_for_lanes!(f32x8, i32x8, 8);
-impl_real_for_lanes!(f32x16, i32x16, 16);
+impl_real_for_lanes!(f32x8, 8);
+impl_real_for_lanes!(f32x16, 16);
+#[cfg(target_arch = "x86_64")]
+impl_real_for_lanes!(Avx512Lanes, 16);
+#[cfg(target_arch = "x86_64")]
+impl_real_for_lanes!(Avx2Lanes, 8);
 
 #[cfg(test)]
 mod tests {
@@ -354,6 +384,35 @@ mod tests {
                     "atan2({y}, {x})"
                 );
             }
+        }
+    }
+
+    /// The lanes of each instruction set the CPU runs ([`super::super::isa`]) meet the bounds
+    /// of `wide`'s: `exp` and `atan2` against f64, `floor` bit for bit.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn instruction_set_lanes_meet_the_same_bounds() {
+        use crate::real::{Avx2Lanes, Avx512Lanes, InstructionSet};
+        fn check<L: Real + From<[f32; N]>, const N: usize>(to_array: impl Fn(L) -> [f32; N]) {
+            let xs: [f32; N] = core::array::from_fn(|k| -80.0 + k as f32 * 160.0 / N as f32);
+            let angles: [f32; N] = core::array::from_fn(|k| -3.1 + k as f32 * 6.2 / N as f32);
+            let (y, x) = (angles.map(|a| 0.7 * a.sin()), angles.map(|a| 0.7 * a.cos()));
+            let exp = to_array(L::from(xs).exp());
+            let atan2 = to_array(L::from(y).atan2(L::from(x)));
+            let floor = to_array(L::from(xs.map(|v| v * 0.37)).floor());
+            for k in 0..N {
+                let want = (xs[k] as f64).exp();
+                assert!((exp[k] as f64 - want).abs() < 3e-7 * want, "exp({})", xs[k]);
+                let want = (y[k] as f64).atan2(x[k] as f64);
+                assert!((atan2[k] as f64 - want).abs() < 4e-7, "atan2 at {k}");
+                assert_eq!(floor[k].to_bits(), (xs[k] * 0.37).floor().to_bits());
+            }
+        }
+        if InstructionSet::Avx512.is_supported() {
+            check::<Avx512Lanes, 16>(Avx512Lanes::to_array);
+        }
+        if InstructionSet::Avx2.is_supported() {
+            check::<Avx2Lanes, 8>(Avx2Lanes::to_array);
         }
     }
 
