@@ -23,6 +23,7 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
+use hairmath::absorption::Absorption;
 use hairmath::bcsdf::{
     eval_batch, eval_batch_soa, par_eval_batch, pdf_batch, BatchLanes, BatchReal, Bcsdf,
     ChiangHair, DirectionSlices, HostBatch, Model, Query, RandomNumbers, RgbSlices, SampledBcsdf,
@@ -352,50 +353,70 @@ fn bench_parallel(c: &mut Criterion) {
 
 criterion_group!(benches, bench_eval, bench_sample, bench_pdf, bench_parallel);
 
-/// A batch evaluation of (wi, wo, h) into out.
-type BatchFn = dyn Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [[f32; 3]]);
+/// A batch evaluation of (wi, wo, h) into out, on rayon's pool if the flag is set.
+type BatchFn<'a> = dyn Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [[f32; 3]], bool) + Sync + 'a;
 
-/// The Mitsuba peer's method (`/tmp/mi/run_peer.sh N 1`): `n` random samples evaluated in one
-/// call, one warm-up pass, then the best of five timed passes, printed as ns per evaluation.
-/// Best-of-five filters the noise of a shared machine the same way for both sides.
-fn peer_style(n: usize) {
-    let p = params();
+/// The Mitsuba peer's method (`benches/peers/mitsuba_hair_bench.py N threads`): `n` random
+/// samples (directions uniform on the sphere, h uniform in [-1, 1]) evaluated in one call on
+/// `threads` threads, one warm-up pass, then the best of five timed passes, printed as ns per
+/// evaluation. Best-of-five filters the noise of a shared machine the same way for both sides.
+fn peer_style(n: usize, threads: usize) {
+    // The peer's material: sigma_a (0.5, 0.8, 1.4) as given, the roughness, tilt and index
+    // of `params`.
+    let p = HairParams {
+        sigma_a: Absorption::new([0.5, 0.8, 1.4]).expect("a valid absorption"),
+        ..params()
+    };
     let (wi, wo, h) = random_samples(n, 3);
     let mut out = vec![[0.0_f32; 3]; n];
-    fn best(
-        eval: impl Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [[f32; 3]]),
-        wi: &[[f32; 3]],
-        wo: &[[f32; 3]],
-        h: &[f32],
-        out: &mut [[f32; 3]],
-    ) -> f64 {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool");
+    // One thread evaluates sequentially; more split the batch on the pool.
+    let best = |eval: &BatchFn, out: &mut [[f32; 3]]| {
         let mut best = f64::INFINITY;
         for pass in 0..6 {
             let t = std::time::Instant::now();
-            eval(black_box(wi), black_box(wo), black_box(h), out);
+            match threads {
+                1 => eval(black_box(&wi), black_box(&wo), black_box(&h), out, false),
+                _ => {
+                    pool.install(|| eval(black_box(&wi), black_box(&wo), black_box(&h), out, true))
+                }
+            }
             black_box(&mut *out);
             if pass > 0 {
                 best = best.min(t.elapsed().as_secs_f64());
             }
         }
-        best * 1e9 / wi.len() as f64
-    }
+        best * 1e9 / n as f64
+    };
     let model = ChiangHair::<f64>::new(&p);
-    fn lanes<L: BatchLanes + 'static>(model: &ChiangHair<f64>) -> Box<BatchFn> {
+    fn lanes<L: BatchLanes + Sync + 'static>(model: &ChiangHair<f64>) -> Box<BatchFn<'static>> {
         let hair = model.instantiate::<L>();
-        Box::new(move |wi, wo, h, out| eval_batch(&hair, wi, wo, h, out).expect("equal lengths"))
+        Box::new(move |wi, wo, h, out, parallel| {
+            match parallel {
+                false => eval_batch(&hair, wi, wo, h, out),
+                true => par_eval_batch(&hair, wi, wo, h, out),
+            }
+            .expect("equal lengths")
+        })
     }
-    let x8 = best(lanes::<wide::f32x8>(&model), &wi, &wo, &h, &mut out);
-    let x16 = best(lanes::<wide::f32x16>(&model), &wi, &wo, &h, &mut out);
+    let x8 = best(&*lanes::<wide::f32x8>(&model), &mut out);
+    let x16 = best(&*lanes::<wide::f32x16>(&model), &mut out);
     let sets: Vec<String> = InstructionSet::ALL
         .into_iter()
         .filter(|set| set.is_supported())
         .map(|set| {
             let batch = HostBatch::on(set, &model);
-            let eval = |wi: &_, wo: &_, h: &_, out: &mut _| {
-                batch.eval(wi, wo, h, out).expect("equal lengths")
+            let eval: &BatchFn<'_> = &|wi, wo, h, out, parallel| {
+                match parallel {
+                    false => batch.eval(wi, wo, h, out),
+                    true => batch.par_eval(wi, wo, h, out),
+                }
+                .expect("equal lengths")
             };
-            format!("{set:?} {:.1} ns", best(eval, &wi, &wo, &h, &mut out))
+            format!("{set:?} {:.1} ns", best(eval, &mut out))
         })
         .collect();
     let mean: f64 = out
@@ -404,20 +425,25 @@ fn peer_style(n: usize) {
         .sum::<f64>()
         / (3 * n) as f64;
     println!(
-        "hairmath batch eval (N={n}, one thread, best of 5 after warm-up): f32x8 {x8:.1} ns, \
+        "hairmath batch eval (N={n}, threads={threads}, best of 5 after warm-up): f32x8 {x8:.1} ns, \
          f32x16 {x16:.1} ns, HostBatch on {} per evaluation (mean value {mean:.5})",
         sets.join(", ")
     );
 }
 
-/// `BCSDF_PEER_N=2000000 cargo bench --bench bcsdf` prints the peer-style measurement
-/// ([`peer_style`]) instead of running criterion.
+/// `BCSDF_PEER_N=2000000 [BCSDF_PEER_THREADS=2] cargo bench --bench bcsdf` prints the
+/// peer-style measurement ([`peer_style`], one thread unless told) instead of running criterion;
+/// `benches/peers/compare_mitsuba.sh` runs it against the peer and prints the ratios.
 fn main() {
     if let Some(n) = std::env::var("BCSDF_PEER_N")
         .ok()
         .and_then(|v| v.parse().ok())
     {
-        peer_style(n);
+        let threads = std::env::var("BCSDF_PEER_THREADS")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(1);
+        peer_style(n, threads);
         return;
     }
     benches();
