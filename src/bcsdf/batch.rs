@@ -11,7 +11,9 @@
 //! names the faster width for the compilation target: [`wide::f32x16`] (one AVX-512 register)
 //! when the crate is compiled with `avx512f`, e.g. under `RUSTFLAGS="-C target-cpu=native"` on
 //! an AVX-512 machine, [`wide::f32x8`] otherwise. For example
-//! `model.instantiate::<BatchReal>()` for a `ChiangHair<f64>` model.
+//! `model.instantiate::<BatchReal>()` for a `ChiangHair<f64>` model. `wide`'s lanes run the
+//! build's instructions; [`super::HostBatch`] runs the CPU's widest (AVX-512 or AVX2), chosen at
+//! run time, with the same functions of this module.
 //!
 //! **Accuracy.** `wide`'s `exp`, `ln` and `atan2` are vectorised polynomial approximations, so
 //! the lanes differ from the scalar `f32` instantiation (which calls libm) by a few ulp per
