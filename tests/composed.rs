@@ -6,7 +6,8 @@
 use core::f64::consts::{FRAC_PI_2, PI};
 use hairmath::absorption::Absorption;
 use hairmath::bcsdf::{
-    trace_eval_with, Bcsdf, ChiangFarField, FarFieldRule, Model, Query, UniformsIn,
+    eval_batch, trace_eval_with, BatchReal, Bcsdf, ChiangFarField, FarFieldRule, HostBatch,
+    InstructionSet, Model, Query, UniformsIn,
 };
 use hairmath::geometry::{local_direction, V3};
 use hairmath::models::{
@@ -180,6 +181,26 @@ fn the_far_field_composition_is_chiangs_far_field() {
                 "{a:?} vs {b:?} at {wi:?} {wo:?}"
             );
         }
+    }
+    // Its kernel is not inlined throughout (Model::INLINED_KERNEL), so the batch on the host's
+    // instruction set runs the build's lanes whatever is asked, and agrees with eval_batch.
+    for set in InstructionSet::ALL {
+        let batch = HostBatch::on(set, &composed);
+        assert_eq!(batch.instruction_set(), InstructionSet::Baseline);
+        let (wi, wo) = ([[0.0, 0.6, 0.8]; 3], [[0.6, 0.8, 0.0]; 3]);
+        let (mut got, mut want) = ([[0.0; 3]; 3], [[0.0; 3]; 3]);
+        batch
+            .eval(&wi, &wo, &[0.0; 3], &mut got)
+            .expect("valid samples");
+        eval_batch(
+            &composed.instantiate::<BatchReal>(),
+            &wi,
+            &wo,
+            &[0.0; 3],
+            &mut want,
+        )
+        .expect("valid samples");
+        assert_eq!(got, want);
     }
 }
 

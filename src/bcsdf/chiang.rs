@@ -682,6 +682,7 @@ impl<R: Real, O: Offsets<R>> SampledBcsdf<R> for ChiangHair<R, O> {
 impl<O: OffsetsIn> Model for ChiangHair<f64, O> {
     type Uniforms<R: Real> = ChiangUniforms<R>;
     type In<R: Real> = ChiangHair<R, O::In<R>>;
+    const INLINED_KERNEL: bool = true;
 
     fn uniforms(&self) -> ChiangUniforms<f64> {
         self.uniforms

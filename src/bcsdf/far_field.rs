@@ -182,31 +182,45 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
 
     /// `(N_p A_p per channel, w_p N_p)` averaged over the nodes: `N_p` here includes the
     /// attenuation, `1/2 int A_p(h) D(phi - Phi(p, h)) dh`; `at.h` is ignored.
+    #[inline(always)]
     fn azimuthal<O, const WITH_PDF: bool>(
         &self,
         hair: &ChiangHair<R, O>,
         at: Outgoing<R>,
     ) -> AzimuthalFactors<R> {
         let elements: Vec<[R; 2]> = self.nodes.iter().map(|&(h, w)| [h, w]).collect();
-        let node = |h: R| hair.azimuthal_at::<WITH_PDF>(Outgoing { h, ..at });
         if WITH_PDF {
             let sums = R::fold(
                 &NODES_WITH_PDF,
                 &elements,
                 [R::c(0.0); 16],
+                #[inline(always)]
                 |mut s, [h, w]| {
-                    let (a, wn) = node(h);
+                    let (a, wn) = hair.azimuthal_at::<WITH_PDF>(Outgoing { h, ..at });
                     add_weighted(&mut s[..12], w, a.as_flattened());
                     add_weighted(&mut s[12..], w, &wn);
                     s
                 },
             );
-            (per_lobe(&sums), core::array::from_fn(|p| sums[12 + p]))
+            (
+                per_lobe(&sums),
+                crate::real::array_from_fn(
+                    #[inline(always)]
+                    |p| sums[12 + p],
+                ),
+            )
         } else {
-            let sums = R::fold(&NODES, &elements, [R::c(0.0); 12], |mut s, [h, w]| {
-                add_weighted(&mut s, w, node(h).0.as_flattened());
-                s
-            });
+            let sums = R::fold(
+                &NODES,
+                &elements,
+                [R::c(0.0); 12],
+                #[inline(always)]
+                |mut s, [h, w]| {
+                    let (a, _) = hair.azimuthal_at::<WITH_PDF>(Outgoing { h, ..at });
+                    add_weighted(&mut s, w, a.as_flattened());
+                    s
+                },
+            );
             (per_lobe(&sums), [R::c(0.0); LOBES_WITH_RESIDUAL])
         }
     }

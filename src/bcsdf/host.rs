@@ -22,7 +22,9 @@ use crate::real::InstructionSet;
 use crate::real::{with_avx2, with_avx512, Avx2Lanes, Avx512Lanes};
 
 /// A model instantiated on the lanes of one instruction set, normally the host's widest:
-/// batch evaluation that needs no `-C target-cpu` flag to use AVX-512 or AVX2.
+/// batch evaluation that needs no `-C target-cpu` flag to use AVX-512 or AVX2. Models whose
+/// kernel is not inlined throughout ([`Model::INLINED_KERNEL`]: so far only
+/// [`ComposedHair`](crate::models::ComposedHair)) run on the build's lanes.
 ///
 /// # Examples
 ///
@@ -90,11 +92,13 @@ impl<M: Model> HostBatch<M> {
 
     /// `model` on the lanes of `set`, or of the widest set narrower than `set` that the CPU
     /// supports ([`HostBatch::instruction_set`] tells which): for comparing instruction sets.
+    /// A model whose kernel is not inlined throughout ([`Model::INLINED_KERNEL`]) runs on the
+    /// build's lanes ([`InstructionSet::Baseline`]).
     pub fn on(set: InstructionSet, model: &M) -> Self {
         let supported = InstructionSet::ALL
             .into_iter()
             .skip_while(|s| *s != set)
-            .find(|s| s.is_supported())
+            .find(|s| s.is_supported() && (M::INLINED_KERNEL || *s == InstructionSet::Baseline))
             .unwrap_or(InstructionSet::Baseline);
         let lanes = match supported {
             #[cfg(target_arch = "x86_64")]
@@ -241,7 +245,8 @@ mod tests {
     }
 
     /// The baseline is `eval_batch` on [`BatchReal`], bit for bit; an instruction set the CPU
-    /// does not run falls back to a narrower one it runs.
+    /// does not run falls back to a narrower one it runs (a model whose kernel is not inlined
+    /// throughout runs the baseline: `tests/composed.rs`).
     #[test]
     fn the_baseline_is_eval_batch_and_unsupported_sets_fall_back() {
         let (wi, wo, h) = inputs(300);

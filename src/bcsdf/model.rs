@@ -212,6 +212,13 @@ pub trait Model: Bcsdf<f64> {
     /// The model in precision `R`.
     type In<R: Real>: Bcsdf<R>;
 
+    /// Whether [`HostBatch`](super::HostBatch) may run the model on AVX-512 or AVX2 lanes:
+    /// `true` only when everything its evaluation calls is inlined (`docs/ARCHITECTURE.md`,
+    /// "Batch hot paths inline all the way down", says how that is checked). A kernel that is
+    /// not inlined calls each of those lanes' intrinsics out of line, several times slower than
+    /// the build's own lanes, which `HostBatch` then uses instead.
+    const INLINED_KERNEL: bool = false;
+
     /// The derived constants, computed once in `f64`.
     fn uniforms(&self) -> Self::Uniforms<f64>;
 

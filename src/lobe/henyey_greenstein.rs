@@ -9,6 +9,7 @@ use crate::real::{Real, ShaderFunction, FOUR_PI};
 /// theta in [-pi, pi] is `E(k) / (pi (1 - |g|))` (see [`HenyeyGreenstein`]), 1.32 for his
 /// g = 0.752. Kept literally because his fitted g values were computed with it.
 /// Requires `|g| < 1`.
+#[inline(always)]
 pub fn hg_gerard_printed<R: Real>(g: R, cos_theta: R) -> R {
     let d = R::c(1.0) + g * g - R::c(2.0) * g * cos_theta;
     (R::c(1.0) - g * g) / (FOUR_PI.get::<R>() * d * d.sqrt())

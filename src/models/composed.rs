@@ -1362,6 +1362,7 @@ impl<R: Real> ComposedHair<R> {
     }
 
     /// `[R, TT, TRT, residual]` per channel (a dropped lobe is 0).
+    #[inline(always)]
     fn lobes(&self, query: &Query<R>) -> [[R; 3]; 4] {
         let a = ComposedAngles::of(query);
         let chiang = self.chiang();
@@ -1403,6 +1404,7 @@ impl<R: Real> Bcsdf<R> for ComposedHair<R> {
     }
 
     /// The sum of the kept lobes (no cosine factor).
+    #[inline(always)]
     fn eval(&self, query: &Query<R>) -> [R; 3] {
         let lobes = self.lobes(query);
         let mut sum = [R::c(0.0); 3];

@@ -144,6 +144,7 @@ use crate::geometry::local_fibre_angles;
 use crate::lobe::gaussian_lobe;
 use crate::lut::{Axis, ParamValue, SharedTable, Table, TableMeta};
 use crate::params::{AzimuthalRoughness, HairParams};
+use crate::real::MapInline;
 use crate::real::{NamedConstant, Real};
 
 /// The lobes of the Frostbite models, in the order of [`Bcsdf::eval_lobes`].
@@ -227,6 +228,7 @@ pub(crate) fn trt_scale_of<R: Real>(beta_n: R) -> R {
 /// Domain: `s_r` in [0, 1]; the result is finite and non-negative, 0 at `s_r = 0`. Its
 /// integral over phi is `2 pi s_r I0(a s_r) e^(b s_r)`: 0.763 at `s_r = 1` (Karis'
 /// lobe), 0.544 at 0.6 (beta_n = 0.6), 0.260 at 0.15 (beta_n = 0.9).
+#[inline(always)]
 pub fn d_trt_frostbite<R: Real>(cos_phi: R, s_r: R, c: ExpCosCoefficients<R>) -> R {
     s_r * (s_r * (c.a * cos_phi + c.b)).exp()
 }
@@ -352,7 +354,10 @@ fn frostbite_uniforms<R: Real>(
         shift_tt: R::c(-2.0) * (R::c(0.5) * alpha).sin(),
         shift_trt: R::c(-2.0) * (R::c(1.5) * alpha).sin(),
         eta: eta.max(R::c(MIN_ETA)),
-        sigma_a: sigma_a.map(|s| s.min(R::c(MAX_SIGMA_A))),
+        sigma_a: sigma_a.map_inline(
+            #[inline(always)]
+            |s| s.min(R::c(MAX_SIGMA_A)),
+        ),
         beta_n,
         trt_scale: trt_scale_of(beta_n),
     }
@@ -398,6 +403,7 @@ struct FrostbiteAngles<R> {
 }
 
 impl<R: Real> FrostbiteAngles<R> {
+    #[inline(always)]
     fn of(query: &Query<R>) -> Self {
         let a = local_fibre_angles(query.wi, query.wo);
         FrostbiteAngles {
@@ -428,6 +434,7 @@ struct FrostbiteLobes<R> {
 
 impl<R: Real, V: FrostbiteVariant> FrostbiteHair<R, V> {
     /// `M_R N_R` (slides 12 and 14).
+    #[inline(always)]
     fn r(&self, a: &FrostbiteAngles<R>) -> R {
         let u = &self.uniforms;
         let mp = gaussian_lobe(u.width_r, a.sum_of_sines - u.shift_r);
@@ -436,6 +443,7 @@ impl<R: Real, V: FrostbiteVariant> FrostbiteHair<R, V> {
 
     /// `A_p(h)` per channel for the ray inclined at theta_o: [`super::offset_attenuation`]'s value,
     /// with the path through the fibre (which does not depend on the channel) traced once.
+    #[inline(always)]
     fn attenuation(
         &self,
         path: Transmitted,
@@ -446,20 +454,28 @@ impl<R: Real, V: FrostbiteVariant> FrostbiteHair<R, V> {
         let inv_eta = (R::c(1.0) / u.eta).label("inv_eta");
         let refraction = Refraction::new(a.sin_o, a.cos_o, u.eta, inv_eta);
         let through = refraction.path(h.get(), PathLength::Chord);
-        u.sigma_a.map(|s| through.attenuations(s)[path.p()])
+        u.sigma_a.map_inline(
+            #[inline(always)]
+            |s| through.attenuations(s)[path.p()],
+        )
     }
 
     /// `M_TT A_TT(h_TT) D_TT(phi)` per channel (slides 12, 17-20).
+    #[inline(always)]
     fn tt(&self, a: &FrostbiteAngles<R>) -> [R; 3] {
         let u = &self.uniforms;
         let mp = gaussian_lobe(u.width_tt, a.sum_of_sines - u.shift_tt);
         let [height, sharpness] = self.tt_table.sample([a.abs_theta_o, u.beta_n]);
         let lobe = (mp * tt_gaussian(a.phi, height, sharpness)).label("tt_lobe");
         self.attenuation(Transmitted::Tt, V::TT_OFFSET, a)
-            .map(|t| lobe * t)
+            .map_inline(
+                #[inline(always)]
+                |t| lobe * t,
+            )
     }
 
     /// `M_TRT A_TRT(h_TRT) D_TRT(phi)` per channel (slides 12 and 21).
+    #[inline(always)]
     fn trt(&self, a: &FrostbiteAngles<R>) -> [R; 3] {
         let u = &self.uniforms;
         let mp = gaussian_lobe(u.width_trt, a.sum_of_sines - u.shift_trt);
@@ -470,9 +486,13 @@ impl<R: Real, V: FrostbiteVariant> FrostbiteHair<R, V> {
         );
         let lobe = (mp * d).label("trt_lobe");
         self.attenuation(Transmitted::Trt, V::TRT_OFFSET, a)
-            .map(|t| lobe * t)
+            .map_inline(
+                #[inline(always)]
+                |t| lobe * t,
+            )
     }
 
+    #[inline(always)]
     fn lobes(&self, query: &Query<R>) -> FrostbiteLobes<R> {
         let a = FrostbiteAngles::of(query);
         FrostbiteLobes {
@@ -496,6 +516,7 @@ impl<R: Real, V: FrostbiteVariant> Bcsdf<R> for FrostbiteHair<R, V> {
 
     /// `sum_p M_p N_p` per channel, the crate's S as it stands (no cosine factor; module
     /// documentation), without allocating.
+    #[inline(always)]
     fn eval(&self, query: &Query<R>) -> [R; 3] {
         let l = self.lobes(query);
         sum_lobes(&[[l.r; 3], l.tt, l.trt])
@@ -503,6 +524,7 @@ impl<R: Real, V: FrostbiteVariant> Bcsdf<R> for FrostbiteHair<R, V> {
 }
 
 impl<V: FrostbiteVariant> Model for FrostbiteHair<f64, V> {
+    const INLINED_KERNEL: bool = true;
     type Uniforms<R: Real> = FrostbiteUniforms<R>;
     type In<R: Real> = FrostbiteHair<R, V>;
 

@@ -91,6 +91,7 @@ pub const GERARD_K_TRT: f64 = 5.5;
 ///
 /// Domain: `k >= 0`, `sigma_a >= 0`; the result is in [0, 1] (it underflows to 0 for very dark
 /// hair, never NaN). Its error against the exact lobe energies is documented with each `k`.
+#[inline(always)]
 pub fn gerard_attenuation<R: Real>(k: R, sigma_a: R) -> R {
     (-k * sigma_a).exp()
 }

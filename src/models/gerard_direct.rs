@@ -82,6 +82,7 @@ use crate::models::{
     GERARD_ABSORPTION_K_TRT, GERARD_ABSORPTION_K_TT, GERARD_K_TRT, GERARD_K_TT, HG_G_BETA_DOMAIN,
 };
 use crate::params::{marschner_lobes, HairParams, MarschnerLobes};
+use crate::real::MapInline;
 use crate::real::Real;
 
 /// Texels of the N_p,LUT table (|phi| x |theta_d|).
@@ -260,23 +261,33 @@ impl<R> Gerard<R> {
 
 impl<R: Real> Gerard<R> {
     /// `[R, TT, TRT]` per channel: eq. 4 to 8 with the cosine conversion.
+    #[inline(always)]
     fn lobes(&self, query: &Query<R>) -> [[R; 3]; 3] {
         let u = &self.uniforms;
         let a = local_fibre_angles(query.wi, query.wo);
         let (theta_i, theta_o) = (a.theta_i().label("theta_i"), a.theta_o().label("theta_o"));
         let theta_h = ((theta_i + theta_o) * R::c(0.5)).label("theta_h");
         let theta_d = ((theta_o - theta_i) * R::c(0.5)).label("theta_d");
-        let lobe = |g: R, scale: R, alpha: R| hg_gerard_printed(g, (theta_h - alpha).cos()) * scale;
+        #[inline(always)]
+        fn lobe<R: Real>(theta_h: R, g: R, scale: R, alpha: R) -> R {
+            hg_gerard_printed(g, (theta_h - alpha).cos()) * scale
+        }
         let cos_d = theta_d.cos().label("cos_theta_d");
         let factor = (a.cos_theta_i / (cos_d * cos_d).max(u.min_cos2_theta_d)).label("factor");
         let [n_r, n_tt, n_trt] = self.n.sample([a.phi.abs(), theta_d.abs()]);
-        let r = lobe(u.g_r, u.lobe_scale_r, u.alpha_r) * n_r * factor;
-        let tt = lobe(u.g_tt, u.lobe_scale_tt, u.alpha_tt) * n_tt * factor;
-        let trt = lobe(u.g_trt, u.lobe_scale_trt, u.alpha_trt) * n_trt * factor;
+        let r = lobe(theta_h, u.g_r, u.lobe_scale_r, u.alpha_r) * n_r * factor;
+        let tt = lobe(theta_h, u.g_tt, u.lobe_scale_tt, u.alpha_tt) * n_tt * factor;
+        let trt = lobe(theta_h, u.g_trt, u.lobe_scale_trt, u.alpha_trt) * n_trt * factor;
         [
             [r; 3],
-            u.sigma_a.map(|s| tt * gerard_attenuation(u.k_tt, s)),
-            u.sigma_a.map(|s| trt * gerard_attenuation(u.k_trt, s)),
+            u.sigma_a.map_inline(
+                #[inline(always)]
+                |s| tt * gerard_attenuation(u.k_tt, s),
+            ),
+            u.sigma_a.map_inline(
+                #[inline(always)]
+                |s| trt * gerard_attenuation(u.k_trt, s),
+            ),
         ]
     }
 }
@@ -292,12 +303,14 @@ impl<R: Real> Bcsdf<R> for Gerard<R> {
     }
 
     /// The sum of the lobes, without allocating.
+    #[inline(always)]
     fn eval(&self, query: &Query<R>) -> [R; 3] {
         sum_lobes(&self.lobes(query))
     }
 }
 
 impl Model for Gerard<f64> {
+    const INLINED_KERNEL: bool = true;
     type Uniforms<R: Real> = GerardUniforms<R>;
     type In<R: Real> = Gerard<R>;
 

@@ -113,6 +113,7 @@ use crate::error::ParamError;
 use crate::geometry::{local_sin_cos_theta, V3};
 use crate::params::HairParams;
 use crate::quadrature::{adaptive, gauss_legendre, integrate};
+use crate::real::MapInline;
 use crate::real::{wrap_angle, Real, TINY};
 use core::f64::consts::{FRAC_PI_2, PI};
 
@@ -226,9 +227,10 @@ pub(crate) const MIN_EXPONENT: f64 = 1e-6;
 /// A weight per channel in shader code: clamped to [0, [`MAX_WEIGHT`]].
 #[inline(always)]
 pub(crate) fn weight_in<R: Real>(inputs: &InputsIn<R>, name: &str) -> [R; 3] {
-    inputs
-        .rgb(name)
-        .map(|w| w.max(R::c(0.0)).min(R::c(MAX_WEIGHT)))
+    inputs.rgb(name).map_inline(
+        #[inline(always)]
+        |w| w.max(R::c(0.0)).min(R::c(MAX_WEIGHT)),
+    )
 }
 
 /// An exponent in shader code: in (0, [`MAX_EXPONENT`]], [`MIN_EXPONENT`] at or below 0.
@@ -285,7 +287,12 @@ impl ReferenceEnergies {
             0.5 * integrate(&rule, 16, -FRAC_PI_2, FRAC_PI_2, a)
         };
         let sigma_a = hair.sigma_a.rgb();
-        let lobe = |p: usize| sigma_a.map(|s| energy(p, s));
+        let lobe = |p: usize| {
+            sigma_a.map_inline(
+                #[inline(always)]
+                |s| energy(p, s),
+            )
+        };
         ReferenceEnergies {
             r: lobe(0),
             tt: lobe(1),
@@ -303,13 +310,16 @@ fn add_rgb(a: Rgb, b: Rgb) -> Rgb {
 /// The weight per channel that gives a term of unit albedo `albedo` the energy `energy`,
 /// capped at [`MAX_WEIGHT`] (0 where the term has no albedo at all).
 pub(crate) fn weight_for(energy: Rgb, albedo: f64) -> Rgb {
-    energy.map(|e| {
-        if albedo > 0.0 {
-            (e / albedo).min(MAX_WEIGHT)
-        } else {
-            0.0
-        }
-    })
+    energy.map_inline(
+        #[inline(always)]
+        |e| {
+            if albedo > 0.0 {
+                (e / albedo).min(MAX_WEIGHT)
+            } else {
+                0.0
+            }
+        },
+    )
 }
 
 /// The width of the window outside which `cos^n x <= exp(-n x^2 / 2)` is below e^-72 of its
@@ -413,12 +423,14 @@ impl<R: Real> Bcsdf<R> for KajiyaKay<R> {
         self.terms(query).to_vec()
     }
 
+    #[inline(always)]
     fn eval(&self, query: &Query<R>) -> [R; 3] {
         sum_lobes(&self.terms(query))
     }
 }
 
 impl Model for KajiyaKay<f64> {
+    const INLINED_KERNEL: bool = true;
     type Uniforms<R: Real> = KajiyaKayUniforms<R>;
     type In<R: Real> = KajiyaKay<R>;
 
@@ -625,12 +637,14 @@ impl<R: Real> Bcsdf<R> for TressFx<R> {
         self.terms(query).to_vec()
     }
 
+    #[inline(always)]
     fn eval(&self, query: &Query<R>) -> [R; 3] {
         sum_lobes(&self.terms(query))
     }
 }
 
 impl Model for TressFx<f64> {
+    const INLINED_KERNEL: bool = true;
     type Uniforms<R: Real> = TressFxUniforms<R>;
     type In<R: Real> = TressFx<R>;
 

@@ -216,6 +216,7 @@ impl<R> NguyenDonnelly<R> {
 /// dot product of the projections of `wi` and `wo` onto the normal plane (local frame: the
 /// tangent is +X). Where a projection vanishes (a direction along the tangent) phi is taken
 /// as 0, the convention of [`crate::geometry::azimuth_between`], so the result is 1.
+#[inline(always)]
 fn cos_relative_azimuth<R: Real>(wi: V3<R>, wo: V3<R>) -> R {
     let dot = wi.y * wo.y + wi.z * wo.z;
     let norms = (wi.y * wi.y + wi.z * wi.z) * (wo.y * wo.y + wo.z * wo.z);
@@ -227,6 +228,7 @@ fn cos_relative_azimuth<R: Real>(wi: V3<R>, wo: V3<R>) -> R {
 impl<R: Real> NguyenDonnelly<R> {
     /// `[R, TT, TRT]` per channel: the fragment shader of the module docs with the cosine
     /// conversion.
+    #[inline(always)]
     fn lobes(&self, query: &Query<R>) -> [[R; 3]; 3] {
         let (sin_i, cos_i) = local_sin_cos_theta(query.wi);
         let (sin_o, cos_o) = local_sin_cos_theta(query.wo);
@@ -260,12 +262,14 @@ impl<R: Real> Bcsdf<R> for NguyenDonnelly<R> {
     }
 
     /// The sum of the lobes, without allocating.
+    #[inline(always)]
     fn eval(&self, query: &Query<R>) -> [R; 3] {
         sum_lobes(&self.lobes(query))
     }
 }
 
 impl Model for NguyenDonnelly<f64> {
+    const INLINED_KERNEL: bool = true;
     type Uniforms<R: Real> = NguyenDonnellyUniforms<R>;
     type In<R: Real> = NguyenDonnelly<R>;
 

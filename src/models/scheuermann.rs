@@ -346,12 +346,14 @@ impl<R: Real> Bcsdf<R> for Scheuermann<R> {
         self.terms(query).to_vec()
     }
 
+    #[inline(always)]
     fn eval(&self, query: &Query<R>) -> [R; 3] {
         sum_lobes(&self.terms(query))
     }
 }
 
 impl Model for Scheuermann<f64> {
+    const INLINED_KERNEL: bool = true;
     type Uniforms<R: Real> = ScheuermannUniforms<R>;
     type In<R: Real> = Scheuermann<R>;
 

@@ -129,6 +129,7 @@ use crate::error::ParamError;
 use crate::fresnel::fresnel_schlick;
 use crate::lobe::gaussian_lobe;
 use crate::params::{AzimuthalRoughness, HairParams, LongitudinalRoughness};
+use crate::real::MapInline;
 use crate::real::{horner, safe_asin, safe_sqrt, NamedConstant, Real, SQRT_2, TINY};
 
 /// The lobes of the Unreal models, in the order of [`Bcsdf::eval_lobes`].
@@ -277,6 +278,7 @@ pub(crate) fn chiang_r_width_in_sines<R: Real>(beta_m: R) -> R {
 /// ([`fresnel_schlick`]) at the cosine of half the angle between the 3D directions (the angle
 /// of incidence of the mirror reflection), from `cos_half_phi = cos(phi/2)` in [0, 1] and
 /// `v_dot_l = wi . wo`. Tafuri 2019 (slide 14) takes it unchanged.
+#[inline(always)]
 pub(crate) fn r_azimuthal<R: Real>(cos_half_phi: R, v_dot_l: R, eta: R) -> R {
     let np = R::c(0.25) * cos_half_phi;
     let fp = fresnel_schlick(saturate(R::c(0.5) + R::c(0.5) * v_dot_l).sqrt(), eta);
@@ -318,14 +320,20 @@ impl UnrealRoughness {
 /// `ln BaseColor = -sqrt(sigma_a) D(beta_n)` ([`log_color_of_sigma_a`]). The one derivation of
 /// [`KarisHair::new`] and of shader code with varying inputs.
 fn karis_uniforms<R: Real>(sigma_a: [R; 3], color_beta_n: R, roughness: R) -> KarisUniforms<R> {
-    let sigma_a = sigma_a.map(|s| s.min(R::c(MAX_SIGMA_A)));
+    let sigma_a = sigma_a.map_inline(
+        #[inline(always)]
+        |s| s.min(R::c(MAX_SIGMA_A)),
+    );
     let width = roughness.clamp(R::c(MIN_ROUGHNESS), R::c(1.0)).sqr();
     KarisUniforms {
         width_r: width,
         width_tt: R::c(0.5) * width,
         width_trt: R::c(2.0) * width,
         sigma_a,
-        log_color: sigma_a.map(|s| log_color_of_sigma_a(s, color_beta_n)),
+        log_color: sigma_a.map_inline(
+            #[inline(always)]
+            |s| log_color_of_sigma_a(s, color_beta_n),
+        ),
     }
 }
 
@@ -418,6 +426,7 @@ struct UnrealAngles<R> {
 
 impl<R: Real> UnrealAngles<R> {
     /// The angles of `query` (module documentation, "Frame").
+    #[inline(always)]
     fn of(query: &Query<R>) -> Self {
         let (wi, wo) = (query.wi, query.wo);
         let one = R::c(1.0);
@@ -459,6 +468,7 @@ struct KarisLobes<R> {
 
 impl<R: Real, V: KarisVariant> KarisHair<R, V> {
     /// The R lobe: `Mp Np Fp` with the exact tilted-cone shift and the separable width.
+    #[inline(always)]
     fn r(&self, a: &UnrealAngles<R>) -> R {
         let (sa, ca) = (R_TILT_SIN_COS.at::<R>(0), R_TILT_SIN_COS.at::<R>(1));
         let cos_v = safe_sqrt(R::c(1.0) - a.sin_v * a.sin_v);
@@ -472,6 +482,7 @@ impl<R: Real, V: KarisVariant> KarisHair<R, V> {
     }
 
     /// The TT lobe per channel: `Mp Np Fp Tp` at Karis' offset h_TT.
+    #[inline(always)]
     fn tt(&self, a: &UnrealAngles<R>) -> [R; 3] {
         let c = V::CONSTANTS;
         let one = R::c(1.0);
@@ -488,10 +499,14 @@ impl<R: Real, V: KarisVariant> KarisHair<R, V> {
         // The listing's path (README errata): 2 |1 - (h a)^2 / cos theta_d|.
         let path =
             (R::c(2.0) * (one - (h * inv_eta_prime).sqr() / a.cos_theta_d).abs()).label("tt_path");
-        self.uniforms.sigma_a.map(|s| lobe * (-s * path).exp())
+        self.uniforms.sigma_a.map_inline(
+            #[inline(always)]
+            |s| lobe * (-s * path).exp(),
+        )
     }
 
     /// The TRT lobe per channel: `Mp Np Fp Tp` at h = sqrt(3)/2.
+    #[inline(always)]
     fn trt(&self, a: &UnrealAngles<R>) -> [R; 3] {
         let c = V::CONSTANTS;
         let mp = gaussian_lobe(self.uniforms.width_trt, a.sum_of_sines - TRT_SHIFT.get());
@@ -500,18 +515,28 @@ impl<R: Real, V: KarisVariant> KarisHair<R, V> {
         let np = d_karis_of_cos(a.cos_phi, ExpCosCoefficients::named(c.d_trt));
         let lobe = (mp * np * fp).label("trt_lobe");
         let exponent = (TRT_COLOR_EXPONENT.get::<R>() / a.cos_theta_d).label("trt_exponent");
-        self.uniforms.log_color.map(|l| lobe * (l * exponent).exp())
+        self.uniforms.log_color.map_inline(
+            #[inline(always)]
+            |l| lobe * (l * exponent).exp(),
+        )
     }
 
     /// The three lobes, each clamped at 0 (UE's `max(S, 0)`, which their sum then needs no
     /// more: every factor is non-negative).
+    #[inline(always)]
     fn lobes(&self, query: &Query<R>) -> KarisLobes<R> {
         let a = UnrealAngles::of(query);
         let zero = R::c(0.0);
         KarisLobes {
             r: self.r(&a).max(zero).label("r_lobe"),
-            tt: self.tt(&a).map(|v| v.max(zero)),
-            trt: self.trt(&a).map(|v| v.max(zero)),
+            tt: self.tt(&a).map_inline(
+                #[inline(always)]
+                |v| v.max(zero),
+            ),
+            trt: self.trt(&a).map_inline(
+                #[inline(always)]
+                |v| v.max(zero),
+            ),
         }
     }
 }
@@ -529,13 +554,18 @@ impl<R: Real, V: KarisVariant> Bcsdf<R> for KarisHair<R, V> {
 
     /// UE's `HairShading` result, which is the crate's S (no cosine factor; module
     /// documentation): `max(R + TT + TRT, 0)` per channel.
+    #[inline(always)]
     fn eval(&self, query: &Query<R>) -> [R; 3] {
         let l = self.lobes(query);
-        core::array::from_fn(|c| (l.r + l.tt[c] + l.trt[c]).max(R::c(0.0)))
+        crate::real::array_from_fn(
+            #[inline(always)]
+            |c| (l.r + l.tt[c] + l.trt[c]).max(R::c(0.0)),
+        )
     }
 }
 
 impl<V: KarisVariant> Model for KarisHair<f64, V> {
+    const INLINED_KERNEL: bool = true;
     type Uniforms<R: Real> = KarisUniforms<R>;
     type In<R: Real> = KarisHair<R, V>;
 

@@ -176,7 +176,11 @@ pub trait Real:
         body: impl Fn([Self; S], [Self; E]) -> [Self; S],
     ) -> [Self; S] {
         let _ = info;
-        elements.iter().fold(init, |state, e| body(state, *e))
+        let mut state = init;
+        for element in elements {
+            state = body(state, *element);
+        }
+        state
     }
 
     /// `self > other`.
@@ -405,6 +409,19 @@ pub(crate) fn map_array<T: Copy, U: Copy, const N: usize>(
         #[inline(always)]
         |k| f(array[k]),
     )
+}
+
+/// [`map_array`] as a method: `array.map_inline(#[inline(always)] |x| ..)`.
+pub(crate) trait MapInline<T, const N: usize> {
+    /// `self.map(f)`, always inlined.
+    fn map_inline<U: Copy>(self, f: impl FnMut(T) -> U) -> [U; N];
+}
+
+impl<T: Copy, const N: usize> MapInline<T, N> for [T; N] {
+    #[inline(always)]
+    fn map_inline<U: Copy>(self, f: impl FnMut(T) -> U) -> [U; N] {
+        map_array(self, f)
+    }
 }
 
 #[cfg(test)]
