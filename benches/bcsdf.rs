@@ -305,49 +305,50 @@ fn bench_parallel(c: &mut Criterion) {
     let (wi, wo, h) = random_samples(PARALLEL_N, 7);
     let mut out = vec![[0.0_f32; 3]; PARALLEL_N];
     let hair = ChiangHair::<f64>::new(&p).instantiate::<BatchReal>();
+    let host = HostBatch::new(&ChiangHair::<f64>::new(&p));
     let mut g = c.benchmark_group("parallel_batch");
     g.throughput(Throughput::Elements(PARALLEL_N as u64));
-    g.bench_function("sequential", |b| {
-        b.iter(|| {
-            eval_batch(black_box(&hair), &wi, &wo, &h, &mut out).expect("equal lengths");
-            black_box(&mut out);
-        })
-    });
-    for threads in [1, 2] {
+    let pools = [1, 2].map(|threads| {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .expect("a thread pool");
-        g.bench_function(BenchmarkId::new("threads", threads), |b| {
-            b.iter(|| {
-                pool.install(|| par_eval_batch(black_box(&hair), &wi, &wo, &h, &mut out))
-                    .expect("equal lengths");
-                black_box(&mut out);
-            })
-        });
-    }
-    let host = HostBatch::new(&ChiangHair::<f64>::new(&p));
-    g.bench_function("host sequential", |b| {
-        b.iter(|| {
-            black_box(&host)
-                .eval(&wi, &wo, &h, &mut out)
-                .expect("equal lengths");
-            black_box(&mut out);
-        })
+        (threads, pool)
     });
-    for threads in [1, 2] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .expect("a thread pool");
-        g.bench_function(BenchmarkId::new("host threads", threads), |b| {
+    // The sequential evaluation, then the parallel one on each pool: `eval` with the flag set
+    // splits the batch on rayon's current pool.
+    let mut scaling = |name: &str, eval: &BatchFn<'_>| {
+        g.bench_function(format!("{name}sequential"), |b| {
             b.iter(|| {
-                pool.install(|| black_box(&host).par_eval(&wi, &wo, &h, &mut out))
-                    .expect("equal lengths");
+                eval(&wi, &wo, &h, &mut out, false);
                 black_box(&mut out);
             })
         });
-    }
+        for (threads, pool) in &pools {
+            g.bench_function(BenchmarkId::new(format!("{name}threads"), threads), |b| {
+                b.iter(|| {
+                    pool.install(|| eval(&wi, &wo, &h, &mut out, true));
+                    black_box(&mut out);
+                })
+            });
+        }
+    };
+    scaling("", &|wi, wo, h, out, parallel| {
+        let hair = black_box(&hair);
+        match parallel {
+            false => eval_batch(hair, wi, wo, h, out),
+            true => par_eval_batch(hair, wi, wo, h, out),
+        }
+        .expect("equal lengths")
+    });
+    scaling("host ", &|wi, wo, h, out, parallel| {
+        let host = black_box(&host);
+        match parallel {
+            false => host.eval(wi, wo, h, out),
+            true => host.par_eval(wi, wo, h, out),
+        }
+        .expect("equal lengths")
+    });
     g.finish();
 }
 

@@ -935,20 +935,35 @@ pub(crate) mod tests {
 
     fn soa_agrees<L: BatchLanes>() {
         let hair = model().instantiate::<L>();
+        layouts_agree(
+            &|wi, wo, h, out| eval_batch(&hair, wi, wo, h, out),
+            &|wi, wo, h, out| eval_batch_soa(&hair, wi, wo, h, out),
+        );
+    }
+
+    /// An array-of-structures batch function.
+    pub(crate) type AosEval<'a> =
+        dyn Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [[f32; 3]]) -> Result<(), BatchError> + 'a;
+    /// A structure-of-arrays batch function.
+    pub(crate) type SoaEval<'a> =
+        dyn Fn(DirectionSlices, DirectionSlices, &[f32], RgbSlices) -> Result<(), BatchError> + 'a;
+
+    /// `soa` gives `aos`'s values bit for bit on the random and hard inputs at every length
+    /// 0..=33 and the whole set.
+    pub(crate) fn layouts_agree(aos: &AosEval, soa: &SoaEval) {
         let (wi, wo, h) = inputs(300);
         let component = |d: &[[f32; 3]], c: usize| -> Vec<f32> { d.iter().map(|w| w[c]).collect() };
         let (wix, wiy, wiz) = (component(&wi, 0), component(&wi, 1), component(&wi, 2));
         let (wox, woy, woz) = (component(&wo, 0), component(&wo, 1), component(&wo, 2));
         for len in (0..=33).chain([wi.len()]) {
-            let mut aos = vec![[0.0; 3]; len];
-            eval_batch(&hair, &wi[..len], &wo[..len], &h[..len], &mut aos).unwrap();
+            let mut want = vec![[0.0; 3]; len];
+            aos(&wi[..len], &wo[..len], &h[..len], &mut want).unwrap();
             let (mut r, mut g, mut b) = (
                 vec![f32::NAN; len],
                 vec![f32::NAN; len],
                 vec![f32::NAN; len],
             );
-            eval_batch_soa(
-                &hair,
+            soa(
                 DirectionSlices {
                     x: &wix[..len],
                     y: &wiy[..len],
@@ -968,10 +983,10 @@ pub(crate) mod tests {
             )
             .unwrap();
             for k in 0..len {
-                let soa = [r[k], g[k], b[k]];
+                let got = [r[k], g[k], b[k]];
                 assert_eq!(
-                    soa.map(f32::to_bits),
-                    aos[k].map(f32::to_bits),
+                    got.map(f32::to_bits),
+                    want[k].map(f32::to_bits),
                     "length {len}, sample {k}"
                 );
             }

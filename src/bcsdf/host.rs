@@ -196,7 +196,7 @@ impl<M: Model> BatchEval for HostBatch<M> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bcsdf::batch::tests::{inputs, max_rel, model, v3};
+    use crate::bcsdf::batch::tests::{inputs, layouts_agree, max_rel, model, v3};
     use crate::bcsdf::{eval_batch, Bcsdf, ChiangHair, Query};
 
     fn supported() -> impl Iterator<Item = InstructionSet> {
@@ -271,55 +271,27 @@ mod tests {
     #[test]
     fn every_entry_point_agrees_and_errors_are_typed() {
         let (wi, wo, h) = inputs(300);
-        let component = |d: &[[f32; 3]], c: usize| -> Vec<f32> { d.iter().map(|w| w[c]).collect() };
-        let (wix, wiy, wiz) = (component(&wi, 0), component(&wi, 1), component(&wi, 2));
-        let (wox, woy, woz) = (component(&wo, 0), component(&wo, 1), component(&wo, 2));
         for set in supported() {
             let batch = HostBatch::on(set, &ChiangHair::new(&Default::default()));
-            for len in (0..=33).chain([wi.len()]) {
-                let mut aos = vec![[0.0; 3]; len];
-                batch
-                    .eval(&wi[..len], &wo[..len], &h[..len], &mut aos)
-                    .unwrap();
-                let mut par = vec![[f32::NAN; 3]; len];
-                batch
-                    .par_eval(&wi[..len], &wo[..len], &h[..len], &mut par)
-                    .unwrap();
-                assert_eq!(par, aos, "{set:?}, length {len}");
-                let (mut r, mut g, mut b) = (vec![0.0; len], vec![0.0; len], vec![0.0; len]);
-                let slices = |x: &[f32], y: &[f32], z: &[f32]| {
-                    (x[..len].to_vec(), y[..len].to_vec(), z[..len].to_vec())
-                };
-                let (ix, iy, iz) = slices(&wix, &wiy, &wiz);
-                let (ox, oy, oz) = slices(&wox, &woy, &woz);
-                batch
-                    .eval_soa(
-                        DirectionSlices {
-                            x: &ix,
-                            y: &iy,
-                            z: &iz,
-                        },
-                        DirectionSlices {
-                            x: &ox,
-                            y: &oy,
-                            z: &oz,
-                        },
-                        &h[..len],
-                        RgbSlices {
-                            r: &mut r,
-                            g: &mut g,
-                            b: &mut b,
-                        },
-                    )
-                    .unwrap();
-                for k in 0..len {
-                    assert_eq!(
-                        [r[k], g[k], b[k]],
-                        aos[k],
-                        "{set:?}, length {len}, sample {k}"
-                    );
-                }
-            }
+            layouts_agree(
+                &|wi, wo, h, out| batch.eval(wi, wo, h, out),
+                &|wi, wo, h, out| batch.eval_soa(wi, wo, h, out),
+            );
+            layouts_agree(
+                &|wi, wo, h, out| batch.eval(wi, wo, h, out),
+                &|wi, wo, h, out| {
+                    let n = h.len();
+                    let mut aos = vec![[0.0; 3]; n];
+                    let rows = |d: &DirectionSlices| -> Vec<[f32; 3]> {
+                        (0..n).map(|k| [d.x[k], d.y[k], d.z[k]]).collect()
+                    };
+                    batch.par_eval(&rows(&wi), &rows(&wo), h, &mut aos)?;
+                    for (k, v) in aos.iter().enumerate() {
+                        (out.r[k], out.g[k], out.b[k]) = (v[0], v[1], v[2]);
+                    }
+                    Ok(())
+                },
+            );
             let mut out = [[7.0; 3]; 2];
             let short = batch.eval(&wi[..2], &wo[..1], &h[..2], &mut out);
             assert!(matches!(short, Err(BatchError::Length(_))));
