@@ -246,16 +246,16 @@ pub fn pdf_batch_world<L: BatchLanes, M: SampledBcsdf<L>>(
 
 /// The inputs of a world-space batch.
 #[derive(Clone, Copy)]
-struct WorldSamples<'a> {
-    tangent: &'a [glam::Vec3],
-    wi: &'a [glam::Vec3],
-    wo: &'a [glam::Vec3],
-    h: &'a [f32],
+pub(crate) struct WorldSamples<'a> {
+    pub(crate) tangent: &'a [glam::Vec3],
+    pub(crate) wi: &'a [glam::Vec3],
+    pub(crate) wo: &'a [glam::Vec3],
+    pub(crate) h: &'a [f32],
 }
 
 /// Checks every sample of a world-space batch (lengths, tangents, directions in world space,
 /// offsets), then runs `local` on blocks of their local directions with the matching `out`.
-fn world_batch<T>(
+pub(crate) fn world_batch<T>(
     samples: WorldSamples,
     out: &mut [T],
     local: impl Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [T]),

@@ -5,7 +5,8 @@
 //! sampling and pdf round trips; the SIMD batch from glam slices; typed errors.
 
 use hairmath::bcsdf::{
-    BatchError, BatchReal, Bcsdf, ChiangHair, Model, Query, RandomNumbers, SampledBcsdf,
+    BatchError, BatchReal, Bcsdf, ChiangHair, HostBatch, InstructionSet, Model, Query,
+    RandomNumbers, SampledBcsdf,
 };
 use hairmath::geometry::V3;
 use hairmath::glam::{DQuat, DVec3, Vec3};
@@ -253,13 +254,26 @@ fn the_world_batch_agrees_with_the_f64_model() {
         .map(|c| hair.eval(&Query::new(c.wi.into(), c.wo.into(), c.h)))
         .collect();
     let peak = reference.iter().flatten().fold(0.0_f64, |m, v| m.max(*v));
-    let mut worst = 0.0_f64;
-    for (r, v) in reference.iter().zip(&out) {
-        for (r, v) in r.iter().zip(v) {
-            worst = worst.max((r - f64::from(*v)).abs() / (r.abs() + 1e-6 * peak));
+    let worst_of = |out: &[[f32; 3]]| {
+        let mut worst = 0.0_f64;
+        for (r, v) in reference.iter().zip(out) {
+            for (r, v) in r.iter().zip(v) {
+                worst = worst.max((r - f64::from(*v)).abs() / (r.abs() + 1e-6 * peak));
+            }
         }
-    }
+        worst
+    };
+    let worst = worst_of(&out);
     assert!(worst < 1e-3, "world batch: worst {worst:e}");
+    // The same on every instruction set this CPU runs (HostBatch::eval_world).
+    for set in InstructionSet::ALL.into_iter().filter(|s| s.is_supported()) {
+        let mut host = vec![[f32::NAN; 3]; wi.len()];
+        HostBatch::on(set, &hair)
+            .eval_world(&tangent, &wi, &wo, &h, &mut host)
+            .unwrap();
+        let worst = worst_of(&host);
+        assert!(worst < 1e-3, "world batch on {set:?}: worst {worst:e}");
+    }
 }
 
 #[test]
@@ -305,10 +319,14 @@ fn the_world_batch_names_the_bad_sample_and_leaves_out_untouched() {
         tangent, wi, wo, h, ..
     } = batch_inputs();
     let untouched = vec![[7.0_f32; 3]; wi.len()];
+    let host = HostBatch::new(&ChiangHair::new(&HairParams::default()));
     let run = |tangent: &[Vec3], wi: &[Vec3], h: &[f32]| {
         let mut out = untouched.clone();
         let result = eval_batch_world(&hair, tangent, wi, &wo, h, &mut out);
         assert_eq!(out, untouched);
+        let on_host = host.eval_world(tangent, wi, &wo, h, &mut out);
+        assert_eq!(out, untouched);
+        assert_eq!(format!("{on_host:?}"), format!("{result:?}"));
         result.unwrap_err()
     };
     let mut bad = tangent.clone();

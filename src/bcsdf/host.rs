@@ -20,6 +20,7 @@ use super::model::Model;
 use crate::real::InstructionSet;
 #[cfg(target_arch = "x86_64")]
 use crate::real::{with_avx2, with_avx512, Avx2Lanes, Avx512Lanes};
+use crate::world::{world_batch, WorldSamples};
 
 /// A model instantiated on the lanes of one instruction set, normally the host's widest:
 /// batch evaluation that needs no `-C target-cpu` flag to use AVX-512 or AVX2. Models whose
@@ -153,6 +154,26 @@ impl<M: Model> HostBatch<M> {
         check_soa(&wi, &wo, h, &out)?;
         on_lanes!(&self.lanes, |model| eval_soa_checked(model, wi, wo, h, out));
         Ok(())
+    }
+
+    /// [`crate::world::eval_batch_world`] on this instruction set's lanes: `S(wi[k], wo[k],
+    /// h[k])` per channel into `out[k]` for the fibre of direction `tangent[k]`, all in world
+    /// space, every sample checked first.
+    ///
+    /// # Errors
+    /// As [`crate::world::eval_batch_world`]; `out` is then untouched.
+    pub fn eval_world(
+        &self,
+        tangent: &[glam::Vec3],
+        wi: &[glam::Vec3],
+        wo: &[glam::Vec3],
+        h: &[f32],
+        out: &mut [[f32; 3]],
+    ) -> Result<(), BatchError> {
+        let samples = WorldSamples { tangent, wi, wo, h };
+        world_batch(samples, out, |wi, wo, h, out| {
+            on_lanes!(&self.lanes, |model| eval_checked(model, wi, wo, h, out));
+        })
     }
 
     /// [`HostBatch::eval`] on every thread of rayon's current pool, in chunks of
