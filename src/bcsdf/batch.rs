@@ -253,6 +253,18 @@ pub(crate) fn check_samples(wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]) -> Resu
 const PAD_DIR: [f32; 3] = [0.0, 1.0, 0.0];
 const PAD_H: f32 = 0.0;
 
+/// The checks of every array-of-structures batch: equal lengths ([`check`]), then the samples
+/// ([`check_samples`]).
+pub(crate) fn check_batch(
+    wi: &[[f32; 3]],
+    wo: &[[f32; 3]],
+    h: &[f32],
+    out: usize,
+) -> Result<(), BatchError> {
+    check(wi.len(), wo.len(), h.len(), out)?;
+    check_samples(wi, wo, h)
+}
+
 pub(crate) fn check(wi: usize, wo: usize, h: usize, out: usize) -> Result<(), BatchLengthError> {
     if wi == wo && wo == h && h == out {
         Ok(())
@@ -354,8 +366,7 @@ pub fn eval_batch<L: BatchLanes, M: Bcsdf<L>>(
     h: &[f32],
     out: &mut [[f32; 3]],
 ) -> Result<(), BatchError> {
-    check(wi.len(), wo.len(), h.len(), out.len())?;
-    check_samples(wi, wo, h)?;
+    check_batch(wi, wo, h, out.len())?;
     eval_checked(model, wi, wo, h, out);
     Ok(())
 }
@@ -602,8 +613,7 @@ pub fn pdf_batch<L: BatchLanes, M: SampledBcsdf<L>>(
     h: &[f32],
     out: &mut [f32],
 ) -> Result<(), BatchError> {
-    check(wi.len(), wo.len(), h.len(), out.len())?;
-    check_samples(wi, wo, h)?;
+    check_batch(wi, wo, h, out.len())?;
     pdf_checked(model, wi, wo, h, out);
     Ok(())
 }
@@ -652,8 +662,7 @@ pub fn par_eval_batch<L: BatchLanes, M: Bcsdf<L> + Sync>(
     h: &[f32],
     out: &mut [[f32; 3]],
 ) -> Result<(), BatchError> {
-    check(wi.len(), wo.len(), h.len(), out.len())?;
-    check_samples(wi, wo, h)?;
+    check_batch(wi, wo, h, out.len())?;
     for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
         eval_batch(model, wi, wo, h, out)
     })
@@ -672,8 +681,7 @@ pub fn par_pdf_batch<L: BatchLanes, M: SampledBcsdf<L> + Sync>(
     h: &[f32],
     out: &mut [f32],
 ) -> Result<(), BatchError> {
-    check(wi.len(), wo.len(), h.len(), out.len())?;
-    check_samples(wi, wo, h)?;
+    check_batch(wi, wo, h, out.len())?;
     for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
         pdf_batch(model, wi, wo, h, out)
     })

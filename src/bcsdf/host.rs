@@ -13,8 +13,8 @@
 //! ([`eval_batch`]'s module documentation).
 
 use super::batch::{
-    check, check_samples, check_soa, eval_checked, eval_soa_checked, BatchError, BatchEval,
-    BatchReal, DirectionSlices, RgbSlices,
+    check_batch, check_soa, eval_checked, eval_soa_checked, BatchError, BatchEval, BatchReal,
+    DirectionSlices, RgbSlices,
 };
 use super::model::Model;
 use crate::real::InstructionSet;
@@ -134,8 +134,7 @@ impl<M: Model> HostBatch<M> {
         h: &[f32],
         out: &mut [[f32; 3]],
     ) -> Result<(), BatchError> {
-        check(wi.len(), wo.len(), h.len(), out.len())?;
-        check_samples(wi, wo, h)?;
+        check_batch(wi, wo, h, out.len())?;
         on_lanes!(&self.lanes, |model| eval_checked(model, wi, wo, h, out));
         Ok(())
     }
@@ -193,8 +192,7 @@ impl<M: Model> HostBatch<M> {
     where
         Self: Sync,
     {
-        check(wi.len(), wo.len(), h.len(), out.len())?;
-        check_samples(wi, wo, h)?;
+        check_batch(wi, wo, h, out.len())?;
         super::batch::for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
             on_lanes!(&self.lanes, |model| eval_checked(model, wi, wo, h, out));
             Ok(())
