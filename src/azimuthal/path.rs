@@ -109,7 +109,7 @@ impl<R: Real> FibrePath<R> {
     /// per unit radius.
     #[inline(always)]
     pub fn transmittance(&self, sigma_a: R) -> R {
-        (-sigma_a * self.segment_length).exp()
+        (-sigma_a * self.segment_length).exp_of_nonpositive()
     }
 
     /// The attenuations `[A_0, A_1, A_2, A_3+]` of the path for absorption `sigma_a` per unit

@@ -212,20 +212,33 @@ fn is_unit(w: &[f32; 3]) -> bool {
     (length - 1.0).abs() <= super::UNIT_TOLERANCE as f32
 }
 
+/// Whether sample `(wi, wo, h)` has unit directions and an offset that is not NaN.
+#[inline(always)]
+fn sample_ok(((wi, wo), h): ((&[f32; 3], &[f32; 3]), &f32)) -> bool {
+    is_unit(wi) & is_unit(wo) & !h.is_nan()
+}
+
 /// [`BatchError`] for the first sample with a direction that is not unit or a NaN offset. A
-/// branch-free pass over every sample first (it vectorises: a few percent of an evaluation),
-/// then, only if one is bad, a search for it.
+/// branch-free pass over every sample first (it vectorises: a few percent of an evaluation;
+/// always inlined, so that [`super::HostBatch`] runs it on its instruction set), then, only
+/// if one is bad, a search for it.
+#[inline(always)]
 pub(crate) fn check_samples(wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]) -> Result<(), BatchError> {
-    let sample_ok =
-        |((a, b), h): ((&[f32; 3], &[f32; 3]), &f32)| is_unit(a) & is_unit(b) & !h.is_nan();
     let all_ok = wi
         .iter()
         .zip(wo)
         .zip(h)
         .fold(true, |ok, sample| ok & sample_ok(sample));
     if all_ok {
-        return Ok(());
+        Ok(())
+    } else {
+        Err(first_bad_sample(wi, wo, h))
     }
+}
+
+/// The error of [`check_samples`] once a sample failed.
+#[cold]
+fn first_bad_sample(wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]) -> BatchError {
     let index = wi
         .iter()
         .zip(wo)
@@ -240,13 +253,13 @@ pub(crate) fn check_samples(wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]) -> Resu
         z: w[2],
         tolerance: super::UNIT_TOLERANCE,
     };
-    Err(if !is_unit(&wi[index]) {
+    if !is_unit(&wi[index]) {
         direction("wi", wi[index])
     } else if !is_unit(&wo[index]) {
         direction("wo", wo[index])
     } else {
         BatchError::Offset { index, h: h[index] }
-    })
+    }
 }
 
 /// The padding sample: wi = wo = (0, 1, 0) (perpendicular to the fibre), h = 0.
@@ -255,6 +268,7 @@ const PAD_H: f32 = 0.0;
 
 /// The checks of every array-of-structures batch: equal lengths ([`check`]), then the samples
 /// ([`check_samples`]).
+#[inline(always)]
 pub(crate) fn check_batch(
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],

@@ -134,9 +134,10 @@ impl<M: Model> HostBatch<M> {
         h: &[f32],
         out: &mut [[f32; 3]],
     ) -> Result<(), BatchError> {
-        check_batch(wi, wo, h, out.len())?;
-        on_lanes!(&self.lanes, |model| eval_checked(model, wi, wo, h, out));
-        Ok(())
+        // Checked on the lanes' instruction set too: the check is a pass over every sample.
+        on_lanes!(&self.lanes, |model| {
+            check_batch(wi, wo, h, out.len()).map(|()| eval_checked(model, wi, wo, h, out))
+        })
     }
 
     /// [`eval_batch_soa`](super::eval_batch_soa) on this instruction set's lanes.
@@ -192,7 +193,7 @@ impl<M: Model> HostBatch<M> {
     where
         Self: Sync,
     {
-        check_batch(wi, wo, h, out.len())?;
+        on_lanes!(&self.lanes, |_model| check_batch(wi, wo, h, out.len()))?;
         super::batch::for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
             on_lanes!(&self.lanes, |model| eval_checked(model, wi, wo, h, out));
             Ok(())

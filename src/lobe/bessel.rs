@@ -165,7 +165,7 @@ impl BranchPolynomials {
 }
 
 /// Abramowitz and Stegun 9.8.1 and 9.8.2.
-static ABRAMOWITZ_STEGUN: BranchPolynomials = BranchPolynomials {
+const ABRAMOWITZ_STEGUN: BranchPolynomials = BranchPolynomials {
     switch: &AS_9_8_SWITCH,
     inv_switch: &AS_9_8_INV_SWITCH,
     near: &AS_9_8_1,
@@ -173,7 +173,7 @@ static ABRAMOWITZ_STEGUN: BranchPolynomials = BranchPolynomials {
 };
 
 /// The reduced form (module documentation).
-static REDUCED: BranchPolynomials = BranchPolynomials {
+const REDUCED: BranchPolynomials = BranchPolynomials {
     switch: &REDUCED_SWITCH,
     inv_switch: &REDUCED_INV_SWITCH,
     near: &REDUCED_NEAR,
@@ -213,19 +213,19 @@ fn largest_finite<R: Real>() -> f64 {
 }
 
 /// The switch point 3.75 between Abramowitz and Stegun 9.8.1 and 9.8.2.
-static AS_9_8_SWITCH: NamedConstant = NamedConstant {
+const AS_9_8_SWITCH: NamedConstant = NamedConstant {
     name: "BESSEL_I0_SWITCH",
     meaning: "3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2",
     values: &[3.75],
 };
 /// `1 / 3.75`.
-static AS_9_8_INV_SWITCH: NamedConstant = NamedConstant {
+const AS_9_8_INV_SWITCH: NamedConstant = NamedConstant {
     name: "BESSEL_I0_INV_SWITCH",
     meaning: "1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1",
     values: &[1.0 / 3.75],
 };
 /// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75.
-static AS_9_8_1: NamedConstant = NamedConstant {
+const AS_9_8_1: NamedConstant = NamedConstant {
     name: "BESSEL_I0_NEAR",
     meaning: "Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75",
     values: &[
@@ -233,7 +233,7 @@ static AS_9_8_1: NamedConstant = NamedConstant {
     ],
 };
 /// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75.
-static AS_9_8_2: NamedConstant = NamedConstant {
+const AS_9_8_2: NamedConstant = NamedConstant {
     name: "BESSEL_I0_FAR",
     meaning: "Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75",
     values: &[
@@ -250,13 +250,13 @@ static AS_9_8_2: NamedConstant = NamedConstant {
 };
 
 /// The reduced form's switch point.
-static REDUCED_SWITCH: NamedConstant = NamedConstant {
+const REDUCED_SWITCH: NamedConstant = NamedConstant {
     name: "BESSEL_I0_REDUCED_SWITCH",
     meaning: "2.65, where the reduced I0 switches from its near cubic to its far one",
     values: &[2.65],
 };
 /// `1 / 2.65`.
-static REDUCED_INV_SWITCH: NamedConstant = NamedConstant {
+const REDUCED_INV_SWITCH: NamedConstant = NamedConstant {
     name: "BESSEL_I0_REDUCED_INV_SWITCH",
     meaning: "1 / 2.65, the argument scale of the reduced I0's near cubic",
     values: &[1.0 / 2.65],
@@ -264,7 +264,7 @@ static REDUCED_INV_SWITCH: NamedConstant = NamedConstant {
 /// The reduced near cubic: the Chebyshev interpolant of `I0(2.65 sqrt(u))` on u in [0, 1] at
 /// four nodes, by increasing power of u (`tests::reduced_coefficients_are_the_interpolants`
 /// recomputes them).
-static REDUCED_NEAR: NamedConstant = NamedConstant {
+const REDUCED_NEAR: NamedConstant = NamedConstant {
     name: "BESSEL_I0_REDUCED_NEAR",
     meaning: "reduced I0(x) = sum a_k (x/2.65)^(2k), x <= 2.65 (Chebyshev interpolant, 4 nodes)",
     values: &[
@@ -276,7 +276,7 @@ static REDUCED_NEAR: NamedConstant = NamedConstant {
 };
 /// The reduced far cubic: the Chebyshev interpolant of `sqrt(x) e^-x I0(x)` in `w = 2.65/x`
 /// on (0, 1] at four nodes, by increasing power of w.
-static REDUCED_FAR: NamedConstant = NamedConstant {
+const REDUCED_FAR: NamedConstant = NamedConstant {
     name: "BESSEL_I0_REDUCED_FAR",
     meaning: "reduced sqrt(x) e^-x I0(x) = sum b_k (2.65/x)^k, x >= 2.65 (Chebyshev interpolant, 4 nodes)",
     values: &[

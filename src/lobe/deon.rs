@@ -80,7 +80,7 @@ impl<R: Real> DeonLobe<R> {
                     one - cos_sum,
                 );
                 let (scale, shift) = form.i0e_split(cos_i * cos_o * self.inv_v);
-                [self.norm * scale * (shift - one_minus_cos * self.inv_v).exp()]
+                [self.norm * scale * (shift - one_minus_cos * self.inv_v).exp_of_nonpositive()]
             },
         )[0]
     }

@@ -169,25 +169,25 @@ pub trait FrostbiteVariant: Copy + core::fmt::Debug + 'static {
 }
 
 /// The slides' h_TT = 0 ([`Transmitted::published_offset`]).
-static SLIDES_TT_OFFSET: NamedConstant = NamedConstant {
+const SLIDES_TT_OFFSET: NamedConstant = NamedConstant {
     name: "TT_OFFSET",
     meaning: "h_TT = 0, the offset of Frostbite's TT attenuation (Tafuri 2019, slide 20)",
     values: &[Transmitted::Tt.published_offset()],
 };
 /// The slides' h_TRT = sqrt(3)/2 ([`Transmitted::published_offset`]).
-static SLIDES_TRT_OFFSET: NamedConstant = NamedConstant {
+const SLIDES_TRT_OFFSET: NamedConstant = NamedConstant {
     name: "TRT_OFFSET",
     meaning: "h_TRT = sqrt(3)/2, the offset of Frostbite's TRT attenuation (slide 21)",
     values: &[Transmitted::Trt.published_offset()],
 };
 /// hairmath's refitted h_TT ([`Transmitted::refit_offset`]).
-static REFIT_TT_OFFSET: NamedConstant = NamedConstant {
+const REFIT_TT_OFFSET: NamedConstant = NamedConstant {
     name: "REFIT_TT_OFFSET",
     meaning: "h_TT whose attenuation is closest to the h-average (hairmath's refit, eta 1.55)",
     values: &[Transmitted::Tt.refit_offset()],
 };
 /// hairmath's refitted h_TRT ([`Transmitted::refit_offset`]).
-static REFIT_TRT_OFFSET: NamedConstant = NamedConstant {
+const REFIT_TRT_OFFSET: NamedConstant = NamedConstant {
     name: "REFIT_TRT_OFFSET",
     meaning: "h_TRT whose attenuation is closest to the h-average (hairmath's refit, eta 1.55)",
     values: &[Transmitted::Trt.refit_offset()],

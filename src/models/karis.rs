@@ -96,49 +96,49 @@ coefficient_pair!(
 );
 
 /// Karis' published Bravais coefficients, [`EtaPrimeCoefficients::PUBLISHED`].
-pub static KARIS_ETA_PRIME_TABLE: NamedConstant = NamedConstant {
+pub const KARIS_ETA_PRIME_TABLE: NamedConstant = NamedConstant {
     name: "KARIS_ETA_PRIME",
     meaning: "a, b of Karis' cos(theta_d) eta' ~ a + b cos^2(theta_d) (Karis 2016)",
     values: &[1.19, 0.36],
 };
 /// hairmath's refit of the Bravais coefficients, [`EtaPrimeCoefficients::REFIT`].
-pub static REFIT_ETA_PRIME_TABLE: NamedConstant = NamedConstant {
+pub const REFIT_ETA_PRIME_TABLE: NamedConstant = NamedConstant {
     name: "REFIT_ETA_PRIME",
     meaning: "a, b of cos(theta_d) eta' ~ a + b cos^2(theta_d), hairmath's minimax refit",
     values: &KARIS_ETA_PRIME,
 };
 /// Karis' published TT distribution, [`ExpCosCoefficients::PUBLISHED_D_TT`].
-pub static KARIS_D_TT_TABLE: NamedConstant = NamedConstant {
+pub const KARIS_D_TT_TABLE: NamedConstant = NamedConstant {
     name: "KARIS_D_TT",
     meaning: "a, b of Karis' TT distribution exp(a cos(phi) + b) (Karis 2016)",
     values: &[-3.65, -3.98],
 };
 /// hairmath's refit of the TT distribution, [`ExpCosCoefficients::REFIT_D_TT`].
-pub static REFIT_D_TT_TABLE: NamedConstant = NamedConstant {
+pub const REFIT_D_TT_TABLE: NamedConstant = NamedConstant {
     name: "REFIT_D_TT",
     meaning: "a, b of the TT distribution exp(a cos(phi) + b), hairmath's least-squares refit",
     values: &KARIS_D_TT,
 };
 /// Karis' published TRT distribution, [`ExpCosCoefficients::PUBLISHED_D_TRT`].
-pub static KARIS_D_TRT_TABLE: NamedConstant = NamedConstant {
+pub const KARIS_D_TRT_TABLE: NamedConstant = NamedConstant {
     name: "KARIS_D_TRT",
     meaning: "a, b of Karis' TRT distribution exp(a cos(phi) + b) (Karis 2016)",
     values: &[17.0, -16.78],
 };
 /// hairmath's refit of the TRT distribution, [`ExpCosCoefficients::REFIT_D_TRT`].
-pub static REFIT_D_TRT_TABLE: NamedConstant = NamedConstant {
+pub const REFIT_D_TRT_TABLE: NamedConstant = NamedConstant {
     name: "REFIT_D_TRT",
     meaning: "a, b of the TRT distribution exp(a cos(phi) + b), hairmath's least-squares refit",
     values: &KARIS_D_TRT,
 };
 /// Karis' published TT offset, [`HTtCoefficients::PUBLISHED`].
-pub static KARIS_H_TT_TABLE: NamedConstant = NamedConstant {
+pub const KARIS_H_TT_TABLE: NamedConstant = NamedConstant {
     name: "KARIS_H_TT",
     meaning: "c1, c2 of Karis' TT offset (1 + a (c1 - c2 cos(phi))) cos(phi/2) (HairBsdf.ush)",
     values: &[0.6, 0.8],
 };
 /// hairmath's refit of the TT offset, [`HTtCoefficients::REFIT`].
-pub static REFIT_H_TT_TABLE: NamedConstant = NamedConstant {
+pub const REFIT_H_TT_TABLE: NamedConstant = NamedConstant {
     name: "REFIT_H_TT",
     meaning: "c1, c2 of the TT offset (1 + a (c1 - c2 cos(phi))) cos(phi/2), hairmath's refit",
     values: &KARIS_H_TT,

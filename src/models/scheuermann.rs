@@ -129,14 +129,14 @@ pub const SCHEUERMANN_LOBES: [&str; 3] = ["diffuse", "primary", "secondary"];
 
 /// The scale of the diffuse's scaled-and-biased Lambert term: `mix(0.25, 1, x) = 0.25 +
 /// 0.75 x`.
-static DIFFUSE_SCALE: NamedConstant = NamedConstant {
+const DIFFUSE_SCALE: NamedConstant = NamedConstant {
     name: "DIFFUSE_SCALE",
     meaning:
         "0.75, the scale of the diffuse's mix(0.25, 1, N.L) = 0.25 + 0.75 N.L (Scheuermann 2004)",
     values: &[0.75],
 };
 /// Its bias.
-static DIFFUSE_BIAS: NamedConstant = NamedConstant {
+const DIFFUSE_BIAS: NamedConstant = NamedConstant {
     name: "DIFFUSE_BIAS",
     meaning: "0.25, the bias of the diffuse's mix(0.25, 1, N.L) (Scheuermann 2004)",
     values: &[0.25],

@@ -137,32 +137,32 @@ pub const KARIS_LOBES: [&str; 3] = ["R", "TT", "TRT"];
 
 /// UE's `Shift`, the cuticle tilt in radians (`HairShading`): R is shifted by `-2 Shift`, TT
 /// by `Shift`, TRT by `4 Shift` ([`TRT_SHIFT`]).
-static SHIFT: NamedConstant = NamedConstant {
+const SHIFT: NamedConstant = NamedConstant {
     name: "SHIFT",
     meaning: "UE's Shift, the cuticle tilt in radians: the TT lobe's shift (HairShading)",
     values: &[0.035],
 };
 /// `4 Shift`, the TRT lobe's shift.
-static TRT_SHIFT: NamedConstant = NamedConstant {
+const TRT_SHIFT: NamedConstant = NamedConstant {
     name: "TRT_SHIFT",
     meaning: "4 Shift, the TRT lobe's shift (HairShading)",
     values: &[4.0 * 0.035],
 };
 /// `sin` and `cos` of the R lobe's tilt `-2 Shift` (the tests check them against `f64`).
-static R_TILT_SIN_COS: NamedConstant = NamedConstant {
+const R_TILT_SIN_COS: NamedConstant = NamedConstant {
     name: "R_TILT_SIN_COS",
     meaning: "sin and cos of -2 Shift, the R lobe's tilt (HairShading)",
     values: &[-0.06994284733753277, 0.9975510002532796],
 };
 /// The refractive index of `Hair_F` (Schlick's F0 = ((1 - 1.55) / (1 + 1.55))^2).
-static ETA: NamedConstant = NamedConstant {
+const ETA: NamedConstant = NamedConstant {
     name: "ETA",
     meaning: "1.55, the refractive index of UE's Hair_F",
     values: &[1.55],
 };
 /// The TRT lobe's absorption as a power of the BaseColor: `Tp = BaseColor^(0.8 / cos theta_d)`
 /// (`HairShading`; exponentiated as `exp(log_color * 0.8 / cos theta_d)`).
-static TRT_COLOR_EXPONENT: NamedConstant = NamedConstant {
+const TRT_COLOR_EXPONENT: NamedConstant = NamedConstant {
     name: "TRT_COLOR_EXPONENT",
     meaning: "0.8, the TRT lobe's Tp = BaseColor^(0.8 / cos theta_d) (HairShading)",
     values: &[0.8],
@@ -170,7 +170,7 @@ static TRT_COLOR_EXPONENT: NamedConstant = NamedConstant {
 /// UE's lower clamp of the Roughness, `1/255`.
 const MIN_ROUGHNESS: f64 = 1.0 / 255.0;
 /// The regulariser of UE's `cos phi = Lp . Vp * rsqrt(|Lp|^2 |Vp|^2 + 1e-4)`.
-static COS_PHI_EPSILON: NamedConstant = NamedConstant {
+const COS_PHI_EPSILON: NamedConstant = NamedConstant {
     name: "COS_PHI_EPSILON",
     meaning: "1e-4, the regulariser of UE's cos phi = Lp.Vp rsqrt(|Lp|^2 |Vp|^2 + 1e-4)",
     values: &[1e-4],

@@ -78,6 +78,14 @@ pub trait Real:
     fn sqrt(self) -> Self;
     /// Natural exponential.
     fn exp(self) -> Self;
+    /// `e^self` for `self <= 0`, which callers guarantee: the decays of lobes, distributions
+    /// and transmittances. The SIMD lanes drop [`Real::exp`]'s handling of overflow and NaN
+    /// there: an argument below -87.34 gives e^-87.34 (1.2e-38, where `f32::exp` gives a
+    /// subnormal or 0), and NaN gives 1.2e-38 too. Everywhere else it is [`Real::exp`].
+    #[inline(always)]
+    fn exp_of_nonpositive(self) -> Self {
+        self.exp()
+    }
     /// Natural logarithm; callers guarantee a positive argument.
     fn ln(self) -> Self;
     /// Sine of an angle in radians; callers keep the argument within a few multiples of pi.
@@ -117,6 +125,17 @@ pub trait Real:
         table: &SharedTable<D, C>,
         coords: [Self; D],
     ) -> [Self; C];
+
+    /// `self * a + b`, for Horner's rule and other sums of products whose error bounds allow
+    /// either rounding: fused (rounded once) on the lanes of an instruction set with fused
+    /// multiply-adds, the AVX-512 and AVX2 lanes of [`crate::bcsdf::HostBatch`]; rounded twice
+    /// everywhere else (`f32`, `f64`, `wide`'s lanes, shader code), so that traced code
+    /// evaluates bit for bit as the `f32` code. Results may thus differ in the last bits
+    /// between instruction sets.
+    #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        self * a + b
+    }
 
     /// Value `index` of the named constant `constant` ([`NamedConstant::get`],
     /// [`NamedConstant::at`]): `Self::c(value)` in every instantiation but the tracer, which
@@ -379,7 +398,7 @@ fn horner_by_power<R: Real>(x: R, n: usize, coefficient: impl Fn(usize) -> R) ->
     let mut sum = coefficient(power);
     while power > 0 {
         power -= 1;
-        sum = sum * x + coefficient(power);
+        sum = sum.mul_add(x, coefficient(power));
     }
     sum
 }

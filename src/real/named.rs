@@ -48,28 +48,28 @@ impl NamedConstant {
 }
 
 /// pi.
-pub static PI: NamedConstant = NamedConstant {
+pub const PI: NamedConstant = NamedConstant {
     name: "PI",
     meaning: "pi",
     values: &[core::f64::consts::PI],
 };
 
 /// 2 pi.
-pub static TWO_PI: NamedConstant = NamedConstant {
+pub const TWO_PI: NamedConstant = NamedConstant {
     name: "TWO_PI",
     meaning: "2 pi",
     values: &[core::f64::consts::TAU],
 };
 
 /// 4 pi: the solid angle of the sphere.
-pub static FOUR_PI: NamedConstant = NamedConstant {
+pub const FOUR_PI: NamedConstant = NamedConstant {
     name: "FOUR_PI",
     meaning: "4 pi, the solid angle of the sphere",
     values: &[4.0 * core::f64::consts::PI],
 };
 
 /// 1 / (2 pi): the uniform density over an angle of 2 pi.
-pub static INV_TWO_PI: NamedConstant = NamedConstant {
+pub const INV_TWO_PI: NamedConstant = NamedConstant {
     name: "INV_TWO_PI",
     meaning: "1 / (2 pi), the uniform density over a full turn",
     values: &[0.5 * core::f64::consts::FRAC_1_PI],
@@ -77,21 +77,21 @@ pub static INV_TWO_PI: NamedConstant = NamedConstant {
 
 /// sqrt(2 pi): the normalisation of the Gaussian (`sqrt` of the `f64` nearest 2 pi, one ulp
 /// below the `f64` nearest sqrt(2 pi); the fitted constants were computed with it).
-pub static SQRT_TWO_PI: NamedConstant = NamedConstant {
+pub const SQRT_TWO_PI: NamedConstant = NamedConstant {
     name: "SQRT_TWO_PI",
     meaning: "sqrt(2 pi), the normalisation of the Gaussian",
     values: &[2.506_628_274_631_000_2],
 };
 
 /// sqrt(2).
-pub static SQRT_2: NamedConstant = NamedConstant {
+pub const SQRT_2: NamedConstant = NamedConstant {
     name: "SQRT_TWO",
     meaning: "sqrt(2)",
     values: &[core::f64::consts::SQRT_2],
 };
 
 /// The floor that keeps a denominator, a length or a width positive.
-pub static TINY: NamedConstant = NamedConstant {
+pub const TINY: NamedConstant = NamedConstant {
     name: "TINY",
     meaning: "1e-30, the floor that keeps a denominator, a length or a width positive",
     values: &[1e-30],
@@ -116,7 +116,7 @@ mod tests {
     #[test]
     #[should_panic(expected = "is a table")]
     fn a_table_is_not_read_as_one_value() {
-        static TABLE: NamedConstant = NamedConstant {
+        const TABLE: NamedConstant = NamedConstant {
             name: "TABLE",
             meaning: "two values",
             values: &[1.0, 2.0],

@@ -75,12 +75,38 @@ macro_rules! floor_without_sse41 {
 macro_rules! lean_exp {
     ($t:ident, $x:expr) => {{
         let x: $t = $x;
-        let lo = $t::splat(-87.336_54);
+        let lo = $t::splat(LOWEST_EXP_ARGUMENT);
         let hi = $t::splat(88.722_83);
         let c = x.fast_max(lo).fast_min(hi);
         let r = (c * $t::LOG2_E)
             .round_ties_even()
             .fast_min($t::splat(127.0));
+        let result = exp_reduced!($t, c, r);
+        let result = x.simd_lt(lo).select($t::ZERO, result);
+        let result = hi.simd_lt(x).select($t::splat(f32::INFINITY), result);
+        x.simd_eq(x).select(result, x)
+    }};
+}
+
+/// Below this argument `f32::exp` is subnormal or 0.
+const LOWEST_EXP_ARGUMENT: f32 = -87.336_54;
+
+/// [`lean_exp`] for arguments `x <= 0` ([`Real::exp_of_nonpositive`]): clamped below at
+/// -87.34 (`vmaxps` also turns NaN into the clamp), and no edge selects.
+macro_rules! lean_exp_of_nonpositive {
+    ($t:ident, $x:expr) => {{
+        let c = $x.fast_max($t::splat(LOWEST_EXP_ARGUMENT));
+        let r = (c * $t::LOG2_E).round_ties_even();
+        exp_reduced!($t, c, r)
+    }};
+}
+
+/// `e^c` for `c` in [-87.34, 88.72] and `r` = c log2(e) rounded (at most 127): Cephes' range
+/// reduction `c = r ln 2 + f` and degree-7 polynomial in f, times `2^r` by one exponent-field
+/// shift.
+macro_rules! exp_reduced {
+    ($t:ident, $c:expr, $r:expr) => {{
+        let (c, r): ($t, $t) = ($c, $r);
         let f = r.mul_neg_add($t::splat(0.693_359_4), c);
         let f = r.mul_neg_add($t::splat(-2.121_944_4e-4), f);
         let mut z = $t::splat(1.0 / 5040.0);
@@ -90,10 +116,7 @@ macro_rules! lean_exp {
         let z = z.mul_add(f * f, f) + $t::ONE;
         // 2^r for integer r in [-126, 127]: the biased exponent r + 127 shifted into place.
         let scale = ExponentField::shifted_into_exponent(r + $t::splat(8_388_608.0 + 127.0));
-        let result = z * scale;
-        let result = x.simd_lt(lo).select($t::ZERO, result);
-        let result = hi.simd_lt(x).select($t::splat(f32::INFINITY), result);
-        x.simd_eq(x).select(result, x)
+        z * scale
     }};
 }
 
@@ -128,10 +151,23 @@ macro_rules! lean_atan2 {
 
 macro_rules! impl_real_for_lanes {
     ($t:ident, $lanes:expr) => {
+        impl_real_for_lanes!($t, $lanes, {});
+    };
+    ($t:ident, $lanes:expr, fused) => {
+        impl_real_for_lanes!($t, $lanes, {
+            /// Fused: one rounding.
+            #[inline(always)]
+            fn mul_add(self, a: Self, b: Self) -> Self {
+                $t::mul_add(self, a, b)
+            }
+        });
+    };
+    ($t:ident, $lanes:expr, { $($fused:item)* }) => {
         impl Real for $t {
             /// A lane mask: all bits set where the comparison holds.
             type Mask = $t;
             const DOUBLE: bool = false;
+            $($fused)*
 
             #[inline(always)]
             fn c(value: f64) -> Self {
@@ -144,6 +180,10 @@ macro_rules! impl_real_for_lanes {
             #[inline(always)]
             fn exp(self) -> Self {
                 lean_exp!($t, self)
+            }
+            #[inline(always)]
+            fn exp_of_nonpositive(self) -> Self {
+                lean_exp_of_nonpositive!($t, self)
             }
             #[inline(always)]
             fn ln(self) -> Self {
@@ -225,9 +265,9 @@ macro_rules! impl_real_for_lanes {
 impl_real_for_lanes!(f32x8, 8);
 impl_real_for_lanes!(f32x16, 16);
 #[cfg(target_arch = "x86_64")]
-impl_real_for_lanes!(Avx512Lanes, 16);
+impl_real_for_lanes!(Avx512Lanes, 16, fused);
 #[cfg(target_arch = "x86_64")]
-impl_real_for_lanes!(Avx2Lanes, 8);
+impl_real_for_lanes!(Avx2Lanes, 8, fused);
 
 #[cfg(test)]
 mod tests {
@@ -413,6 +453,86 @@ mod tests {
         }
         if InstructionSet::Avx2.is_supported() {
             check::<Avx2Lanes, 8>(Avx2Lanes::to_array);
+        }
+    }
+
+    /// `exp_of_nonpositive` on every lane type this CPU runs: within `exp`'s 3e-7 of f64 on
+    /// [-87.33, 0], e^-87.34 (below 1.2e-38) beneath, at -inf and for NaN (documented).
+    #[test]
+    fn exp_of_nonpositive_is_exp_below_zero() {
+        fn check<L: Real + From<[f32; N]>, const N: usize>(to_array: impl Fn(L) -> [f32; N]) {
+            let mut xs: Vec<f32> = (0..20_000).map(|k| -100.0 + k as f32 * 0.005).collect();
+            xs.extend([
+                0.0,
+                -0.0,
+                -1e-30,
+                -87.33,
+                -87.34,
+                -1e30,
+                f32::NEG_INFINITY,
+                f32::NAN,
+            ]);
+            while !xs.len().is_multiple_of(N) {
+                xs.push(-1.0);
+            }
+            for chunk in xs.chunks_exact(N) {
+                let a: [f32; N] = chunk.try_into().unwrap();
+                let got = to_array(L::from(a).exp_of_nonpositive());
+                for (x, g) in a.iter().zip(got) {
+                    let want = (*x as f64).exp();
+                    if x.is_nan() || *x < LOWEST_EXP_ARGUMENT {
+                        assert!((0.0..1.2e-38).contains(&g) && g > 0.0, "e^{x} = {g}");
+                    } else {
+                        let rel = (g as f64 - want).abs() / want;
+                        assert!(rel < 3e-7, "e^{x} = {g}, want {want}: {rel:e}");
+                    }
+                }
+            }
+        }
+        check::<f32x16, 16>(f32x16::to_array);
+        check::<f32x8, 8>(f32x8::to_array);
+        #[cfg(target_arch = "x86_64")]
+        {
+            use crate::real::InstructionSet;
+            if InstructionSet::Avx512.is_supported() {
+                check::<Avx512Lanes, 16>(Avx512Lanes::to_array);
+            }
+            if InstructionSet::Avx2.is_supported() {
+                check::<Avx2Lanes, 8>(Avx2Lanes::to_array);
+            }
+        }
+        // Elsewhere it is exp itself.
+        assert_eq!((-3.5_f32).exp_of_nonpositive(), (-3.5_f32).exp());
+        assert!(Real::exp_of_nonpositive(f64::NAN).is_nan());
+    }
+
+    /// `mul_add` rounds once on the instruction sets' lanes and twice elsewhere:
+    /// (1 + 2^-23)^2 - (1 + 2^-22) is 2^-46 exactly, and 0 with the product rounded first.
+    #[test]
+    fn mul_add_is_fused_only_on_the_instruction_sets_lanes() {
+        let a = 1.0 + f32::EPSILON;
+        let c = -(1.0 + 2.0 * f32::EPSILON);
+        let fused = 2f32.powi(-46);
+        assert_eq!(Real::mul_add(a, a, c), 0.0);
+        let v = f32x16::splat(a);
+        assert_eq!(Real::mul_add(v, v, f32x16::splat(c)).to_array(), [0.0; 16]);
+        #[cfg(target_arch = "x86_64")]
+        {
+            use crate::real::InstructionSet;
+            if InstructionSet::Avx512.is_supported() {
+                let v = Avx512Lanes::splat(a);
+                assert_eq!(
+                    Real::mul_add(v, v, Avx512Lanes::splat(c)).to_array(),
+                    [fused; 16]
+                );
+            }
+            if InstructionSet::Avx2.is_supported() {
+                let v = Avx2Lanes::splat(a);
+                assert_eq!(
+                    Real::mul_add(v, v, Avx2Lanes::splat(c)).to_array(),
+                    [fused; 8]
+                );
+            }
         }
     }
 
