@@ -7,6 +7,11 @@
 //! `R::c(value)`, bit for bit; the tracer records a [`Node::Named`](super::Node::Named) node,
 //! and the shader emitter declares one module-scope `const` per name (an `array<f32, N>` for a
 //! table of coefficients) that the code reads by name.
+//!
+//! Declare them as `const` items, not `static`s: a batch kernel is compiled in the crate that
+//! instantiates it, where a `static` of hairmath is an external symbol whose value the
+//! optimiser cannot see (docs/ARCHITECTURE.md). The tracer identifies a constant by its name,
+//! not its address.
 
 use super::Real;
 

@@ -513,6 +513,7 @@ mod tests {
         let a = 1.0 + f32::EPSILON;
         let c = -(1.0 + 2.0 * f32::EPSILON);
         let fused = 2f32.powi(-46);
+        assert_eq!(f32::mul_add(a, a, c), fused, "std's fused multiply-add");
         assert_eq!(Real::mul_add(a, a, c), 0.0);
         let v = f32x16::splat(a);
         assert_eq!(Real::mul_add(v, v, f32x16::splat(c)).to_array(), [0.0; 16]);
