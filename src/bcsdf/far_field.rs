@@ -103,8 +103,8 @@ impl FarFieldRule {
 /// precision, over which the azimuthal factors are averaged ([`Offsets`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct OffsetNodes<R> {
-    /// (h_k, P_k), the weights summing to 1.
-    nodes: Vec<(R, R)>,
+    /// [h_k, P_k], the weights summing to 1, as the loop over the nodes reads them.
+    nodes: Vec<[R; 2]>,
 }
 
 impl<R: Real> OffsetNodes<R> {
@@ -114,7 +114,7 @@ impl<R: Real> OffsetNodes<R> {
             nodes: rule
                 .nodes
                 .iter()
-                .map(|&(h, p)| (R::c(h), R::c(p)))
+                .map(|&(h, p)| [R::c(h), R::c(p)])
                 .collect(),
         }
     }
@@ -171,7 +171,7 @@ impl OffsetsIn for OffsetNodes<f64> {
             nodes: self
                 .nodes
                 .iter()
-                .map(|&(h, p)| (S::c(h), S::c(p)))
+                .map(|&[h, p]| [S::c(h), S::c(p)])
                 .collect(),
         }
     }
@@ -188,11 +188,10 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
         hair: &ChiangHair<R, O>,
         at: Outgoing<R>,
     ) -> AzimuthalFactors<R> {
-        let elements: Vec<[R; 2]> = self.nodes.iter().map(|&(h, w)| [h, w]).collect();
         if WITH_PDF {
             let sums = R::fold(
                 &NODES_WITH_PDF,
-                &elements,
+                &self.nodes,
                 [R::c(0.0); 16],
                 #[inline(always)]
                 |mut s, [h, w]| {
@@ -212,7 +211,7 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
         } else {
             let sums = R::fold(
                 &NODES,
-                &elements,
+                &self.nodes,
                 [R::c(0.0); 12],
                 #[inline(always)]
                 |mut s, [h, w]| {
@@ -228,8 +227,8 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
     /// Node k is chosen with probability P_k: when P_0 + ... + P_{k-1} <= u < P_0 + ... + P_k
     /// (by selects, so it traces).
     fn sample_offset(&self, _h: R, u: R) -> R {
-        let (mut h, mut lower) = self.nodes[0];
-        for &(node_h, weight) in &self.nodes[1..] {
+        let [mut h, mut lower] = self.nodes[0];
+        for &[node_h, weight] in &self.nodes[1..] {
             h = R::select(lower.le(u), node_h, h);
             lower += weight;
         }
