@@ -152,9 +152,7 @@ fn bench_eval(c: &mut Criterion) {
             })
         });
         // The same samples as a structure of arrays (no transposition).
-        let component = |d: &[[f32; 3]], c: usize| -> Vec<f32> { d.iter().map(|w| w[c]).collect() };
-        let wi = [0, 1, 2].map(|c| component(&x.wi, c));
-        let wo = [0, 1, 2].map(|c| component(&x.wo, c));
+        let (wi, wo) = (components(&x.wi), components(&x.wo));
         let mut rgb = [vec![0.0_f32; N], vec![0.0_f32; N], vec![0.0_f32; N]];
         g.bench_function(BenchmarkId::new("batch soa", name), |b| {
             b.iter(|| {
@@ -170,6 +168,7 @@ fn bench_eval(c: &mut Criterion) {
     batch::<wide::f32x8>(&mut g, "f32x8", &p, &x);
     batch::<wide::f32x16>(&mut g, "f32x16", &p, &x);
     let model = ChiangHair::<f64>::new(&p);
+    let (wi_soa, wo_soa) = (components(&x.wi), components(&x.wo));
     for set in InstructionSet::ALL.into_iter().filter(|s| s.is_supported()) {
         let host = HostBatch::on(set, &model);
         let mut out = vec![[0.0_f32; 3]; N];
@@ -186,8 +185,24 @@ fn bench_eval(c: &mut Criterion) {
                 black_box(&mut out);
             })
         });
+        let mut rgb = [vec![0.0_f32; N], vec![0.0_f32; N], vec![0.0_f32; N]];
+        g.bench_function(BenchmarkId::new("host soa", format!("{set:?}")), |b| {
+            b.iter(|| {
+                let (wi, wo) = (soa(black_box(&wi_soa)), soa(black_box(&wo_soa)));
+                let [r, g, b] = &mut rgb;
+                black_box(&host)
+                    .eval_soa(wi, wo, black_box(&x.h), RgbSlices { r, g, b })
+                    .expect("equal lengths");
+                black_box(&mut rgb);
+            })
+        });
     }
     g.finish();
+}
+
+/// The x, y and z components of `d` as three arrays.
+fn components(d: &[[f32; 3]]) -> [Vec<f32>; 3] {
+    [0, 1, 2].map(|c| d.iter().map(|w| w[c]).collect())
 }
 
 /// Direction components as the slices of a structure-of-arrays batch.
@@ -405,6 +420,9 @@ fn peer_style(n: usize, threads: usize) {
     }
     let x8 = best(&*lanes::<wide::f32x8>(&model), &mut out);
     let x16 = best(&*lanes::<wide::f32x16>(&model), &mut out);
+    // The same samples as a structure of arrays, the layout Mitsuba's arrays have.
+    let (wi_soa, wo_soa) = (components(&wi), components(&wo));
+    let mut rgb = [vec![0.0_f32; n], vec![0.0_f32; n], vec![0.0_f32; n]];
     let sets: Vec<String> = InstructionSet::ALL
         .into_iter()
         .filter(|set| set.is_supported())
@@ -417,7 +435,9 @@ fn peer_style(n: usize, threads: usize) {
                 }
                 .expect("equal lengths")
             };
-            format!("{set:?} {:.1} ns", best(eval, &mut out))
+            let aos = best(eval, &mut out);
+            let soa = best_soa(&batch, &wi_soa, &wo_soa, &h, &mut rgb, &pool);
+            format!("{set:?} {aos:.1} ns, {set:?}-soa {soa:.1} ns")
         })
         .collect();
     let mean: f64 = out
@@ -430,6 +450,36 @@ fn peer_style(n: usize, threads: usize) {
          f32x16 {x16:.1} ns, HostBatch on {} per evaluation (mean value {mean:.5})",
         sets.join(", ")
     );
+}
+
+/// [`HostBatch::eval_soa`] (one thread in `pool`) or [`HostBatch::par_eval_soa`] (more) as
+/// [`peer_style`] times the array of structures: one warm-up pass, then the best of five, in ns
+/// per evaluation.
+fn best_soa(
+    batch: &HostBatch<ChiangHair<f64>>,
+    wi: &[Vec<f32>; 3],
+    wo: &[Vec<f32>; 3],
+    h: &[f32],
+    rgb: &mut [Vec<f32>; 3],
+    pool: &rayon::ThreadPool,
+) -> f64 {
+    let mut best = f64::INFINITY;
+    for pass in 0..6 {
+        let [r, g, b] = &mut *rgb;
+        let out = RgbSlices { r, g, b };
+        let (wi, wo, h) = (soa(black_box(wi)), soa(black_box(wo)), black_box(h));
+        let t = std::time::Instant::now();
+        match pool.current_num_threads() {
+            1 => batch.eval_soa(wi, wo, h, out),
+            _ => pool.install(|| batch.par_eval_soa(wi, wo, h, out)),
+        }
+        .expect("equal lengths");
+        black_box(&mut *rgb);
+        if pass > 0 {
+            best = best.min(t.elapsed().as_secs_f64());
+        }
+    }
+    best * 1e9 / h.len() as f64
 }
 
 /// `BCSDF_PEER_N=2000000 [BCSDF_PEER_THREADS=2] cargo bench --bench bcsdf` prints the

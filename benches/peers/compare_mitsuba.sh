@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs Mitsuba 3's hair BSDF (mitsuba_hair_bench.py) and hairmath's batch (benches/bcsdf.rs in
 # its peer mode) back to back on the same sample count and thread count, and prints Mitsuba's
-# time over hairmath's for each of hairmath's instruction sets (above 1: hairmath is faster).
+# time over hairmath's for each of hairmath's instruction sets, from an array of structures and
+# (`-soa`) from a structure of arrays, Mitsuba's layout (above 1: hairmath is faster).
 # usage: benches/peers/compare_mitsuba.sh [N] [threads]   (README in this folder for the set-up)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -14,7 +15,7 @@ hairmath_line=$(BCSDF_PEER_N="$n" BCSDF_PEER_THREADS="$threads" cargo bench --qu
 echo "$mitsuba_line"
 echo "$hairmath_line"
 mitsuba_ns=$(sed -E 's/.*: ([0-9.]+) ns per evaluation.*/\1/' <<<"$mitsuba_line")
-grep -oE '(Avx512|Avx2|Baseline) [0-9.]+ ns' <<<"$hairmath_line" | while read -r set ns _; do
+grep -oE '(Avx512|Avx2|Baseline)(-soa)? [0-9.]+ ns' <<<"$hairmath_line" | while read -r set ns _; do
     awk -v set="$set" -v m="$mitsuba_ns" -v h="$ns" \
         'BEGIN { printf "Mitsuba / hairmath on %s: %.2f\n", set, m / h }'
 done

@@ -74,7 +74,11 @@ macro_rules! impl_batch_lanes {
             #[inline(always)]
             fn store(self, out: &mut [f32]) {
                 let a = self.to_array();
-                out.copy_from_slice(&a[..out.len()]);
+                // A full chunk as one fixed-size copy (a vector store), a tail lane by lane.
+                match <&mut [f32; $n]>::try_from(&mut *out) {
+                    Ok(full) => *full = a,
+                    Err(_) => out.copy_from_slice(&a[..out.len()]),
+                }
             }
             #[inline(always)]
             fn lane(self, k: usize) -> f32 {
@@ -425,6 +429,21 @@ pub struct DirectionSlices<'a> {
     pub z: &'a [f32],
 }
 
+impl<'a> DirectionSlices<'a> {
+    /// The samples in `range` of every component.
+    ///
+    /// # Panics
+    /// If `range` is outside a component (callers check the lengths first).
+    #[cfg(feature = "parallel")]
+    fn range(&self, range: core::ops::Range<usize>) -> DirectionSlices<'a> {
+        DirectionSlices {
+            x: &self.x[range.clone()],
+            y: &self.y[range.clone()],
+            z: &self.z[range],
+        }
+    }
+}
+
 /// Per-channel outputs as a structure of arrays: sample `k`'s S is `(r[k], g[k], b[k])`.
 #[derive(Debug)]
 pub struct RgbSlices<'a> {
@@ -474,7 +493,9 @@ pub fn eval_batch_soa<L: BatchLanes, M: Bcsdf<L>>(
     Ok(())
 }
 
-/// The checks of [`eval_batch_soa`]: lengths, then samples.
+/// The checks of [`eval_batch_soa`]: lengths, then samples (always inlined, as
+/// [`check_samples`]).
+#[inline(always)]
 pub(crate) fn check_soa(
     wi: &DirectionSlices,
     wo: &DirectionSlices,
@@ -501,15 +522,11 @@ pub(crate) fn eval_soa_checked<L: BatchLanes, M: Bcsdf<L>>(
 ) {
     let len = h.len();
     for start in (0..len).step_by(L::LANES) {
-        let lanes = |s: &[f32], fill: f32| soa_lanes::<L>(s, start, fill);
-        let direction = |d: &DirectionSlices| {
-            V3::new(
-                lanes(d.x, PAD_DIR[0]),
-                lanes(d.y, PAD_DIR[1]),
-                lanes(d.z, PAD_DIR[2]),
-            )
-        };
-        let value = model.eval(&Query::new(direction(&wi), direction(&wo), lanes(h, PAD_H)));
+        let value = model.eval(&Query::new(
+            soa_direction(&wi, start),
+            soa_direction(&wo, start),
+            soa_lanes(h, start, PAD_H),
+        ));
         let end = (start + L::LANES).min(len);
         for (channel, v) in [&mut *out.r, &mut *out.g, &mut *out.b]
             .into_iter()
@@ -518,6 +535,16 @@ pub(crate) fn eval_soa_checked<L: BatchLanes, M: Bcsdf<L>>(
             v.store(&mut channel[start..end]);
         }
     }
+}
+
+/// `L::LANES` directions of `d` from `start`, padded with [`PAD_DIR`] past its end.
+#[inline(always)]
+fn soa_direction<L: BatchLanes>(d: &DirectionSlices, start: usize) -> V3<L> {
+    V3::new(
+        soa_lanes(d.x, start, PAD_DIR[0]),
+        soa_lanes(d.y, start, PAD_DIR[1]),
+        soa_lanes(d.z, start, PAD_DIR[2]),
+    )
 }
 
 /// `L::LANES` values of `s` from `start`, padded with `fill` past its end.
@@ -563,26 +590,49 @@ fn check_components(
 }
 
 /// [`check_samples`] of a structure of arrays (lengths already checked): a branch-free pass
-/// first, as there, then the search for the first bad sample.
+/// first, as there (always inlined), then the search for the first bad sample.
+#[inline(always)]
 fn check_soa_samples(
     wi: &DirectionSlices,
     wo: &DirectionSlices,
     h: &[f32],
 ) -> Result<(), BatchError> {
+    // Cut to h's length, so that the pass has no bounds checks and vectorises.
     let n = h.len();
     let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
     let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
-    let sample = |k: usize| ([ix[k], iy[k], iz[k]], [ox[k], oy[k], oz[k]]);
-    let sample_ok = |k: usize| {
-        let (a, b) = sample(k);
-        is_unit(&a) & is_unit(&b) & !h[k].is_nan()
-    };
-    if (0..n).fold(true, |ok, k| ok & sample_ok(k)) {
-        return Ok(());
+    let mut all_ok = true;
+    for k in 0..n {
+        let sample = ([ix[k], iy[k], iz[k]], [ox[k], oy[k], oz[k]]);
+        all_ok &= sample_ok(((&sample.0, &sample.1), &h[k]));
     }
-    let k = (0..n).position(|k| !sample_ok(k)).unwrap_or(0);
-    let (a, b) = sample(k);
-    check_samples(&[a], &[b], &h[k..=k]).map_err(|e| e.shifted(k))
+    match all_ok {
+        true => Ok(()),
+        false => Err(first_bad_soa_sample(wi, wo, h)),
+    }
+}
+
+/// Sample `k` of a structure of arrays (lengths already checked) as [`sample_ok`] sees it.
+#[inline(always)]
+fn soa_sample(wi: &DirectionSlices, wo: &DirectionSlices, k: usize) -> ([f32; 3], [f32; 3]) {
+    ([wi.x[k], wi.y[k], wi.z[k]], [wo.x[k], wo.y[k], wo.z[k]])
+}
+
+/// Whether sample `k` of a structure of arrays passes [`check_samples`].
+#[inline(always)]
+fn soa_sample_ok(wi: &DirectionSlices, wo: &DirectionSlices, h: &[f32], k: usize) -> bool {
+    let (a, b) = soa_sample(wi, wo, k);
+    sample_ok(((&a, &b), &h[k]))
+}
+
+/// The error of [`check_soa_samples`] once a sample failed.
+#[cold]
+fn first_bad_soa_sample(wi: &DirectionSlices, wo: &DirectionSlices, h: &[f32]) -> BatchError {
+    let k = (0..h.len())
+        .position(|k| !soa_sample_ok(wi, wo, h, k))
+        .unwrap_or(0);
+    let (a, b) = soa_sample(wi, wo, k);
+    first_bad_sample(&[a], &[b], &h[k..=k]).shifted(k)
 }
 
 /// A model instantiated on the lanes of [`BatchReal`], behind a trait object: what a caller
@@ -716,6 +766,50 @@ pub(crate) fn for_each_parallel_chunk<T: Send>(
         .zip(h.par_chunks(PARALLEL_CHUNK))
         .zip(out.par_chunks_mut(PARALLEL_CHUNK))
         .try_for_each(|(((wi, wo), h), out)| f(wi, wo, h, out))
+}
+
+/// [`eval_batch_soa`] on every thread of rayon's current pool, as [`par_eval_batch`] is
+/// [`eval_batch`]'s: the same values, bit for bit, whatever the thread count.
+///
+/// # Errors
+/// As [`eval_batch_soa`], checked before any work; `out` is then untouched.
+#[cfg(feature = "parallel")]
+pub fn par_eval_batch_soa<L: BatchLanes, M: Bcsdf<L> + Sync>(
+    model: &M,
+    wi: DirectionSlices<'_>,
+    wo: DirectionSlices<'_>,
+    h: &[f32],
+    out: RgbSlices<'_>,
+) -> Result<(), BatchError> {
+    check_soa(&wi, &wo, h, &out)?;
+    for_each_parallel_soa_chunk(wi, wo, h, out, |wi, wo, h, out| {
+        eval_soa_checked(model, wi, wo, h, out)
+    });
+    Ok(())
+}
+
+/// Runs `f` on chunks of [`PARALLEL_CHUNK`] samples of a structure of arrays in parallel
+/// (lengths already checked).
+#[cfg(feature = "parallel")]
+pub(crate) fn for_each_parallel_soa_chunk(
+    wi: DirectionSlices<'_>,
+    wo: DirectionSlices<'_>,
+    h: &[f32],
+    out: RgbSlices<'_>,
+    f: impl Fn(DirectionSlices<'_>, DirectionSlices<'_>, &[f32], RgbSlices<'_>) + Sync,
+) {
+    use rayon::prelude::*;
+    out.r
+        .par_chunks_mut(PARALLEL_CHUNK)
+        .zip(out.g.par_chunks_mut(PARALLEL_CHUNK))
+        .zip(out.b.par_chunks_mut(PARALLEL_CHUNK))
+        .enumerate()
+        .for_each(|(chunk, ((r, g), b))| {
+            let start = chunk * PARALLEL_CHUNK;
+            let range = start..start + r.len();
+            let (wi, wo) = (wi.range(range.clone()), wo.range(range.clone()));
+            f(wi, wo, &h[range], RgbSlices { r, g, b });
+        });
 }
 
 #[cfg(test)]
@@ -1179,5 +1273,92 @@ pub(crate) mod tests {
             short,
             eval_batch(&hair, &wi[1..], &wo, &h, &mut expected).unwrap_err()
         );
+    }
+
+    /// A structure of arrays as owned components: `[wi.x, wi.y, wi.z, wo.x, wo.y, wo.z]`.
+    #[cfg(feature = "parallel")]
+    fn soa_components(wi: &[[f32; 3]], wo: &[[f32; 3]]) -> [Vec<f32>; 6] {
+        let component = |d: &[[f32; 3]], c: usize| d.iter().map(|w| w[c]).collect();
+        [
+            component(wi, 0),
+            component(wi, 1),
+            component(wi, 2),
+            component(wo, 0),
+            component(wo, 1),
+            component(wo, 2),
+        ]
+    }
+
+    /// The parallel structure-of-arrays batch ([`par_eval_batch_soa`] and
+    /// [`crate::bcsdf::HostBatch::par_eval_soa`] on every instruction set the CPU runs) is the
+    /// sequential one bit for bit, in pools of one to three threads, on a length that is no
+    /// multiple of the chunk or the lanes; a bad sample in the third chunk is the sequential
+    /// batch's error, with `out` untouched.
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn the_parallel_structure_of_arrays_batch_is_the_sequential_one() {
+        use crate::bcsdf::HostBatch;
+        use crate::real::InstructionSet;
+        type SoaEval<'a> = dyn Fn(DirectionSlices, DirectionSlices, &[f32], RgbSlices) -> Result<(), BatchError>
+            + Sync
+            + 'a;
+        let (wi, wo, h) = inputs(3 * PARALLEL_CHUNK + 5);
+        let n = h.len();
+        let c = soa_components(&wi, &wo);
+        let mut bad = c.clone();
+        bad[1][2 * PARALLEL_CHUNK + 1] = f32::NAN;
+        fn directions(c: &[Vec<f32>; 6]) -> (DirectionSlices<'_>, DirectionSlices<'_>) {
+            let slices = |k: usize| DirectionSlices {
+                x: &c[k],
+                y: &c[k + 1],
+                z: &c[k + 2],
+            };
+            (slices(0), slices(3))
+        }
+        // Every value as bits, or the error's Debug text (it may hold a NaN).
+        let run = |eval: &SoaEval, c: &[Vec<f32>; 6]| -> Result<Vec<u32>, String> {
+            let mut rgb = [vec![7.0_f32; n], vec![7.0_f32; n], vec![7.0_f32; n]];
+            let (wi, wo) = directions(c);
+            let [r, g, b] = &mut rgb;
+            let result = eval(wi, wo, &h, RgbSlices { r, g, b });
+            match result {
+                Ok(()) => Ok(rgb.iter().flatten().map(|x| x.to_bits()).collect()),
+                Err(e) => {
+                    assert!(rgb.iter().flatten().all(|&x| x == 7.0), "out was touched");
+                    Err(format!("{e:?}"))
+                }
+            }
+        };
+        let hair = model().instantiate::<BatchReal>();
+        let hosts: Vec<HostBatch<ChiangHair<f64>>> = InstructionSet::ALL
+            .into_iter()
+            .filter(|set| set.is_supported())
+            .map(|set| HostBatch::on(set, &model()))
+            .collect();
+        let mut pairs: Vec<(Box<SoaEval>, Box<SoaEval>)> = vec![(
+            Box::new(|wi, wo, h, out| eval_batch_soa(&hair, wi, wo, h, out)),
+            Box::new(|wi, wo, h, out| par_eval_batch_soa(&hair, wi, wo, h, out)),
+        )];
+        for host in &hosts {
+            pairs.push((
+                Box::new(|wi, wo, h, out| host.eval_soa(wi, wo, h, out)),
+                Box::new(|wi, wo, h, out| host.par_eval_soa(wi, wo, h, out)),
+            ));
+        }
+        for (sequential, parallel) in &pairs {
+            let (sequential, parallel) = (&**sequential, &**parallel);
+            let (expected, expected_bad) = (run(sequential, &c), run(sequential, &bad));
+            assert!(expected.is_ok() && expected_bad.is_err());
+            for threads in 1..=3 {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                pool.install(|| {
+                    assert_eq!(run(parallel, &c), expected, "{threads} threads");
+                    assert_eq!(run(parallel, &bad), expected_bad, "{threads} threads");
+                });
+            }
+        }
     }
 }

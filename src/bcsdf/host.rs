@@ -151,9 +151,10 @@ impl<M: Model> HostBatch<M> {
         h: &[f32],
         out: RgbSlices<'_>,
     ) -> Result<(), BatchError> {
-        check_soa(&wi, &wo, h, &out)?;
-        on_lanes!(&self.lanes, |model| eval_soa_checked(model, wi, wo, h, out));
-        Ok(())
+        // Checked on the lanes' instruction set too, as in [`HostBatch::eval`].
+        on_lanes!(&self.lanes, |model| {
+            check_soa(&wi, &wo, h, &out).map(|()| eval_soa_checked(model, wi, wo, h, out))
+        })
     }
 
     /// [`crate::world::eval_batch_world`] on this instruction set's lanes: `S(wi[k], wo[k],
@@ -198,6 +199,30 @@ impl<M: Model> HostBatch<M> {
             on_lanes!(&self.lanes, |model| eval_checked(model, wi, wo, h, out));
             Ok(())
         })
+    }
+
+    /// [`HostBatch::eval_soa`] on every thread of rayon's current pool, in chunks of
+    /// [`super::PARALLEL_CHUNK`] samples: the values of [`HostBatch::eval_soa`], bit for bit,
+    /// whatever the thread count.
+    ///
+    /// # Errors
+    /// As [`HostBatch::eval_soa`], checked before any work; `out` is then untouched.
+    #[cfg(feature = "parallel")]
+    pub fn par_eval_soa(
+        &self,
+        wi: DirectionSlices<'_>,
+        wo: DirectionSlices<'_>,
+        h: &[f32],
+        out: RgbSlices<'_>,
+    ) -> Result<(), BatchError>
+    where
+        Self: Sync,
+    {
+        on_lanes!(&self.lanes, |_model| check_soa(&wi, &wo, h, &out))?;
+        super::batch::for_each_parallel_soa_chunk(wi, wo, h, out, |wi, wo, h, out| {
+            on_lanes!(&self.lanes, |model| eval_soa_checked(model, wi, wo, h, out));
+        });
+        Ok(())
     }
 }
 

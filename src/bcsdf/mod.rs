@@ -30,7 +30,7 @@ pub use batch::{
     BatchReal, DirectionSlices, RgbSlices, LANES,
 };
 #[cfg(feature = "parallel")]
-pub use batch::{par_eval_batch, par_pdf_batch, PARALLEL_CHUNK};
+pub use batch::{par_eval_batch, par_eval_batch_soa, par_pdf_batch, PARALLEL_CHUNK};
 pub use chiang::{
     logistic_scale, longitudinal_variance, AtOffset, AzimuthalFactors, ChiangHair, ChiangUniforms,
     Offsets, OffsetsIn, Outgoing, CHIANG_LOBES,
