@@ -81,7 +81,9 @@ pub trait Real:
     /// `e^self` for `self <= 0`, which callers guarantee: the decays of lobes, distributions
     /// and transmittances. The SIMD lanes drop [`Real::exp`]'s handling of overflow and NaN
     /// there: an argument below -87.34 gives e^-87.34 (1.2e-38, where `f32::exp` gives a
-    /// subnormal or 0), and NaN gives 1.2e-38 too. Everywhere else it is [`Real::exp`].
+    /// subnormal or 0), and NaN gives 1.2e-38 too; their polynomial is one degree lower
+    /// (the argument's reduction never needs the wider interval of an overflowing `exp`), with
+    /// the same accuracy (8.0e-8 relative on [-87.33, 0]). Everywhere else it is [`Real::exp`].
     #[inline(always)]
     fn exp_of_nonpositive(self) -> Self {
         self.exp()
