@@ -274,7 +274,6 @@ impl Avx512Lanes {
         })
     }
     /// `f32::floor` per lane.
-    #[cfg_attr(not(target_feature = "sse4.1"), allow(dead_code))]
     #[inline(always)]
     pub(crate) fn floor(self) -> Self {
         // SAFETY: see the module documentation.
@@ -325,7 +324,6 @@ impl Avx2Lanes {
         })
     }
     /// `f32::floor` per lane.
-    #[cfg_attr(not(target_feature = "sse4.1"), allow(dead_code))]
     #[inline(always)]
     pub(crate) fn floor(self) -> Self {
         // SAFETY: see the module documentation.

@@ -179,24 +179,50 @@ macro_rules! lean_atan2 {
 }
 
 macro_rules! impl_real_for_lanes {
+    // `wide`'s lanes, with the build's instructions.
     ($t:ident, $lanes:expr) => {
-        impl_real_for_lanes!($t, $lanes, {});
+        impl_real_for_lanes!($t, $lanes, {
+            #[inline(always)]
+            fn floor(self) -> Self {
+                #[cfg(all(
+                    any(target_arch = "x86", target_arch = "x86_64"),
+                    not(target_feature = "sse4.1")
+                ))]
+                {
+                    // Without SSE4.1 `wide` floors lane by lane through libm.
+                    floor_without_sse41!($t, self)
+                }
+                #[cfg(not(all(
+                    any(target_arch = "x86", target_arch = "x86_64"),
+                    not(target_feature = "sse4.1")
+                )))]
+                {
+                    $t::floor(self)
+                }
+            }
+        });
     };
-    ($t:ident, $lanes:expr, fused) => {
+    // The lanes of an instruction set, which only run where it is supported: its fused
+    // multiply-add and its rounding instruction, whatever the build's target features.
+    ($t:ident, $lanes:expr, instruction_set) => {
         impl_real_for_lanes!($t, $lanes, {
             /// Fused: one rounding.
             #[inline(always)]
             fn mul_add(self, a: Self, b: Self) -> Self {
                 $t::mul_add(self, a, b)
             }
+            #[inline(always)]
+            fn floor(self) -> Self {
+                $t::floor(self)
+            }
         });
     };
-    ($t:ident, $lanes:expr, { $($fused:item)* }) => {
+    ($t:ident, $lanes:expr, { $($specific:item)* }) => {
         impl Real for $t {
             /// A lane mask: all bits set where the comparison holds.
             type Mask = $t;
             const DOUBLE: bool = false;
-            $($fused)*
+            $($specific)*
 
             #[inline(always)]
             fn c(value: f64) -> Self {
@@ -243,24 +269,6 @@ macro_rules! impl_real_for_lanes {
                 $t::fast_max(self, other)
             }
             #[inline(always)]
-            fn floor(self) -> Self {
-                #[cfg(all(
-                    any(target_arch = "x86", target_arch = "x86_64"),
-                    not(target_feature = "sse4.1")
-                ))]
-                {
-                    // Without SSE4.1 `wide` floors lane by lane through libm.
-                    floor_without_sse41!($t, self)
-                }
-                #[cfg(not(all(
-                    any(target_arch = "x86", target_arch = "x86_64"),
-                    not(target_feature = "sse4.1")
-                )))]
-                {
-                    $t::floor(self)
-                }
-            }
-            #[inline(always)]
             fn lt(self, other: Self) -> Self {
                 self.simd_lt(other)
             }
@@ -294,9 +302,9 @@ macro_rules! impl_real_for_lanes {
 impl_real_for_lanes!(f32x8, 8);
 impl_real_for_lanes!(f32x16, 16);
 #[cfg(target_arch = "x86_64")]
-impl_real_for_lanes!(Avx512Lanes, 16, fused);
+impl_real_for_lanes!(Avx512Lanes, 16, instruction_set);
 #[cfg(target_arch = "x86_64")]
-impl_real_for_lanes!(Avx2Lanes, 8, fused);
+impl_real_for_lanes!(Avx2Lanes, 8, instruction_set);
 
 #[cfg(test)]
 mod tests {
@@ -351,21 +359,33 @@ mod tests {
         while !xs.len().is_multiple_of(16) {
             xs.push(7.25);
         }
-        for chunk in xs.chunks_exact(16) {
-            let a: [f32; 16] = chunk.try_into().unwrap();
-            let got = <f32x16 as Real>::floor(f32x16::from(a)).to_array();
-            for (x, g) in a.iter().zip(got) {
-                let want = x.floor();
-                assert!(
-                    want.to_bits() == g.to_bits() || (want.is_nan() && g.is_nan()),
-                    "floor({x:e}) = {g:e}, want {want:e}"
-                );
+        fn check<L: Real + From<[f32; N]>, const N: usize>(
+            xs: &[f32],
+            to_array: impl Fn(L) -> [f32; N],
+        ) {
+            for chunk in xs.chunks_exact(N) {
+                let a: [f32; N] = chunk.try_into().unwrap();
+                let got = to_array(L::from(a).floor());
+                for (x, g) in a.iter().zip(got) {
+                    let want = x.floor();
+                    assert!(
+                        want.to_bits() == g.to_bits() || (want.is_nan() && g.is_nan()),
+                        "floor({x:e}) = {g:e}, want {want:e} ({N} lanes)"
+                    );
+                }
             }
-            let lo = <f32x8 as Real>::floor(f32x8::from(<[f32; 8]>::try_from(&a[..8]).unwrap()));
-            assert_eq!(
-                lo.to_array().map(f32::to_bits)[..],
-                got.map(f32::to_bits)[..8]
-            );
+        }
+        check::<f32x16, 16>(&xs, f32x16::to_array);
+        check::<f32x8, 8>(&xs, f32x8::to_array);
+        #[cfg(target_arch = "x86_64")]
+        {
+            use crate::real::InstructionSet;
+            if InstructionSet::Avx512.is_supported() {
+                check::<Avx512Lanes, 16>(&xs, Avx512Lanes::to_array);
+            }
+            if InstructionSet::Avx2.is_supported() {
+                check::<Avx2Lanes, 8>(&xs, Avx2Lanes::to_array);
+            }
         }
     }
 
