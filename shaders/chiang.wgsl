@@ -145,13 +145,13 @@ fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32
     let _e7 = (cos_i * cos_o);
     let _e9 = (_e7 - (sin_i * sin_o));
     let _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
-    let _e22 = max((_e7 * inv_variance_r), 0f);
-    let _e27 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    let _e23 = max((_e7 * inv_variance_r), 0f);
+    let _e24 = (_e23 < BESSEL_I0_SWITCH);
+    let _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
     let _e28 = (_e27 * _e27);
-    let _e55 = (1f / max(_e22, BESSEL_I0_SWITCH));
-    let _e56 = (BESSEL_I0_SWITCH * _e55);
-    let _e93 = (_e22 < BESSEL_I0_SWITCH);
-    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e56) + BESSEL_I0_FAR[7]) * _e56) + BESSEL_I0_FAR[6]) * _e56) + BESSEL_I0_FAR[5]) * _e56) + BESSEL_I0_FAR[4]) * _e56) + BESSEL_I0_FAR[3]) * _e56) + BESSEL_I0_FAR[2]) * _e56) + BESSEL_I0_FAR[1]) * _e56) + BESSEL_I0_FAR[0]) * sqrt(_e55)), ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]), _e93)) * exp((select(0f, -(_e22), _e93) - (select((1f - _e9), ((_e12 * _e12) / (1f + max(_e9, 0f))), (0f < _e9)) * inv_variance_r))));
+    let _e56 = (1f / max(_e23, BESSEL_I0_SWITCH));
+    let _e57 = (BESSEL_I0_SWITCH * _e56);
+    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)), ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]), _e24)) * exp((select(0f, -(_e23), _e24) - (select((1f - _e9), ((_e12 * _e12) / (1f + max(_e9, 0f))), (0f < _e9)) * inv_variance_r))));
 }
 
 // hair_bcsdf: `hairmath eval --model chiang`, Chiang et al. 2016 (pbrt-v4 HairBxDF): the near-field reference, S(wi, wo, h)

@@ -63,12 +63,15 @@ const ASYMPTOTIC: [f64; ASYMPTOTIC_TERMS] = {
 #[inline(always)]
 pub fn i0e_split<R: Real>(x: R) -> (R, R) {
     match R::DOUBLE {
-        true => split(x, series_double),
-        false => split(
+        true => split(
             x,
+            R::c(SERIES_END),
             #[inline(always)]
-            |x| ABRAMOWITZ_STEGUN.eval(x),
+            |small| series_near(small),
+            #[inline(always)]
+            |large| series_far(large),
         ),
+        false => ABRAMOWITZ_STEGUN.split(x),
     }
 }
 
@@ -76,11 +79,7 @@ pub fn i0e_split<R: Real>(x: R) -> (R, R) {
 /// error at most 1.49e-4, for lobes whose error budget is far above the precision's.
 #[inline(always)]
 pub fn i0e_split_reduced<R: Real>(x: R) -> (R, R) {
-    split(
-        x,
-        #[inline(always)]
-        |x| REDUCED.eval(x),
-    )
+    REDUCED.split(x)
 }
 
 /// Which approximation of `I0(x) e^-x` a lobe evaluates.
@@ -104,34 +103,42 @@ impl BesselForm {
     }
 }
 
-/// `(scale, shift)` from `branches(x) = (switch point, near value, far value)` (the
-/// [`i0e_split`] contract).
+/// `(scale, shift)` (the [`i0e_split`] contract) from the branches on either side of `switch`:
+/// `near(min(x, switch))`, I0 itself, and `far(max(x, switch))`, `I0 e^-x`. A branch no lane
+/// needs is skipped ([`Real::every_lane`]); the other is evaluated on the same clamped
+/// argument as when both are, so every lane's value is the same either way.
 #[inline(always)]
-fn split<R: Real>(x: R, branches: impl Fn(R) -> (R, R, R)) -> (R, R) {
+fn split<R: Real>(x: R, switch: R, near: impl Fn(R) -> R, far: impl Fn(R) -> R) -> (R, R) {
     let x = x.max(R::c(0.0));
-    let (switch, near, far) = branches(x);
     let is_near = x.lt(switch);
+    if R::every_lane(is_near) {
+        return (near(x.min(switch)), -x);
+    }
+    if R::every_lane(!is_near) {
+        return (far(x.max(switch)), R::c(0.0));
+    }
     (
-        R::select(is_near, near, far),
+        R::select(is_near, near(x.min(switch)), far(x.max(switch))),
         R::select(is_near, -x, R::c(0.0)),
     )
 }
 
-/// (switch point, I0 by its power series, sqrt(2 pi x) e^-x I0 / sqrt(2 pi x) by the asymptotic
-/// series), each evaluated on its side of the switch point.
+/// I0 by its power series.
 #[inline(always)]
-fn series_double<R: Real>(x: R) -> (R, R, R) {
-    let small = x.min(R::c(SERIES_END));
-    let large = x.max(R::c(SERIES_END));
-    let near = horner(small * small * R::c(0.25), &SERIES);
+fn series_near<R: Real>(small: R) -> R {
+    horner(small * small * R::c(0.25), &SERIES)
+}
+
+/// `sqrt(2 pi x) e^-x I0 / sqrt(2 pi x)` by the asymptotic series.
+#[inline(always)]
+fn series_far<R: Real>(large: R) -> R {
     // sqrt(2 pi x), without overflowing 2 pi x for x above f64::MAX / (2 pi).
     let root = R::select(
         large.lt(R::c(HUGE)),
         (R::c(2.0 * core::f64::consts::PI) * large).sqrt(),
         R::c((2.0 * core::f64::consts::PI).sqrt()) * large.sqrt(),
     );
-    let far = horner(R::c(0.125) / large, &ASYMPTOTIC) / root;
-    (R::c(SERIES_END), near, far)
+    horner(R::c(0.125) / large, &ASYMPTOTIC) / root
 }
 
 /// A two-branch polynomial form of I0: `I0(x) = near((x/s)^2)` below the switch point `s`
@@ -148,19 +155,32 @@ struct BranchPolynomials {
 }
 
 impl BranchPolynomials {
-    /// (switch point, I0 by the near polynomial, e^-x I0 by the far one), each evaluated on
-    /// its side of the switch point.
+    /// `I0(x) e^-x` split as [`i0e_split`] does, by these polynomials.
     #[inline(always)]
-    fn eval<R: Real>(&self, x: R) -> (R, R, R) {
-        let switch = self.switch.get::<R>();
-        let small = x.min(switch);
-        let large = x.max(switch);
+    fn split<R: Real>(&self, x: R) -> (R, R) {
+        split(
+            x,
+            self.switch.get::<R>(),
+            #[inline(always)]
+            |small| self.near(small),
+            #[inline(always)]
+            |large| self.far(large),
+        )
+    }
+
+    /// I0 by the near polynomial, for `small` at most the switch point.
+    #[inline(always)]
+    fn near<R: Real>(&self, small: R) -> R {
         let t = small * self.inv_switch.get::<R>();
-        let near = horner_named(t * t, self.near);
+        horner_named(t * t, self.near)
+    }
+
+    /// `e^-x I0` by the far polynomial, for `large` at least the switch point.
+    #[inline(always)]
+    fn far<R: Real>(&self, large: R) -> R {
         // One division: s / x and 1 / sqrt(x) both from 1 / x.
         let inv = R::c(1.0) / large;
-        let far = horner_named(switch * inv, self.far) * inv.sqrt();
-        (switch, near, far)
+        horner_named(self.switch.get::<R>() * inv, self.far) * inv.sqrt()
     }
 }
 
@@ -361,8 +381,10 @@ mod tests {
             let want = i0e_by_quadrature(x);
             // The polynomials themselves, in f64: A&S's bounds are absolute, 1.6e-7 on I0 >= 1
             // and 1.9e-7 on sqrt(x) e^-x I0 >= 0.3989, so at most 4.8e-7 relative.
-            let (_, near, far) = ABRAMOWITZ_STEGUN.eval(x);
-            let poly = if x < 3.75 { near * (-x).exp() } else { far };
+            let poly = match x < 3.75 {
+                true => ABRAMOWITZ_STEGUN.near(x) * (-x).exp(),
+                false => ABRAMOWITZ_STEGUN.far(x),
+            };
             assert!(
                 ((poly - want) / want).abs() < 4.8e-7,
                 "x = {x}: {poly} vs {want}"
@@ -373,6 +395,59 @@ mod tests {
                 ((got - want) / want).abs() < 1e-6,
                 "x = {x}: {got} vs {want}"
             );
+        }
+    }
+
+    /// A branch that no lane needs is skipped, and every lane's value is the same whether its
+    /// neighbours take the same branch (one evaluated) or not (both and a select): SIMD lanes
+    /// of all-near, all-far and mixed arguments give the scalar `f32` bits (`wide`'s lanes
+    /// round as `f32` does), in both forms.
+    #[test]
+    fn skipping_a_branch_changes_no_value() {
+        use wide::f32x8;
+        let near: [f32; 8] = [0.0, 0.1, 0.5, 1.0, 2.0, 2.6, 3.0, 3.7];
+        let far: [f32; 8] = [3.75, 4.0, 5.0, 8.0, 20.0, 100.0, 1e4, 1e30];
+        let mixed: [f32; 8] = core::array::from_fn(|k| [near, far][k % 2][k]);
+        for form in [BesselForm::Full, BesselForm::Reduced] {
+            for x in [near, far, mixed] {
+                let (scale, shift) = form.i0e_split(f32x8::from(x));
+                for (k, &x) in x.iter().enumerate() {
+                    let (want_scale, want_shift) = form.i0e_split(x);
+                    assert_eq!(scale.to_array()[k].to_bits(), want_scale.to_bits(), "{x}");
+                    assert_eq!(shift.to_array()[k].to_bits(), want_shift.to_bits(), "{x}");
+                }
+            }
+        }
+        // The instruction sets' lanes fuse multiply-adds, so only compare them with themselves:
+        // each lane of the mixed arguments against the same argument among all-near or all-far.
+        #[cfg(target_arch = "x86_64")]
+        {
+            use crate::real::{Avx2Lanes, Avx512Lanes, InstructionSet};
+            fn same_either_way<L: Real + From<[f32; N]>, const N: usize>(
+                to_array: impl Fn(L) -> [f32; N],
+                [near, far, mixed]: [[f32; 8]; 3],
+            ) {
+                let bits = |x: [f32; 8]| {
+                    let lanes: [f32; N] = core::array::from_fn(|k| x[k % 8]);
+                    let (scale, shift) = i0e_split(L::from(lanes));
+                    (
+                        to_array(scale).map(f32::to_bits),
+                        to_array(shift).map(f32::to_bits),
+                    )
+                };
+                let (uniform, both) = ([bits(near), bits(far)], bits(mixed));
+                for k in 0..N {
+                    let alone = uniform[k % 2];
+                    let x = mixed[k % 8];
+                    assert_eq!((both.0[k], both.1[k]), (alone.0[k], alone.1[k]), "{x}");
+                }
+            }
+            if InstructionSet::Avx2.is_supported() {
+                same_either_way::<Avx2Lanes, 8>(Avx2Lanes::to_array, [near, far, mixed]);
+            }
+            if InstructionSet::Avx512.is_supported() {
+                same_either_way::<Avx512Lanes, 16>(Avx512Lanes::to_array, [near, far, mixed]);
+            }
         }
     }
 

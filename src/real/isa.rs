@@ -265,6 +265,12 @@ impl Avx512Lanes {
         // SAFETY: see the module documentation.
         Self::mask_lanes(unsafe { _mm512_movepi32_mask(_mm512_castps_si512(self.0)) })
     }
+    /// Whether the mask `self` is set in every lane.
+    #[inline(always)]
+    pub(crate) fn all(self) -> bool {
+        // SAFETY: see the module documentation.
+        unsafe { _mm512_movepi32_mask(_mm512_castps_si512(self.0)) == u16::MAX }
+    }
     /// Rounds to the nearest integer, ties to even (`f32::round_ties_even`).
     #[inline(always)]
     pub(crate) fn round_ties_even(self) -> Self {
@@ -306,6 +312,12 @@ impl Avx2Lanes {
     pub(crate) fn select(self, on_true: Self, on_false: Self) -> Self {
         // SAFETY: see the module documentation.
         Avx2Lanes(unsafe { _mm256_blendv_ps(on_false.0, on_true.0, self.0) })
+    }
+    /// Whether the mask `self` is set in every lane.
+    #[inline(always)]
+    pub(crate) fn all(self) -> bool {
+        // SAFETY: see the module documentation.
+        unsafe { _mm256_movemask_ps(self.0) == 0xFF }
     }
     /// A mask of the lanes whose sign bit is set.
     #[inline(always)]

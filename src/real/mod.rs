@@ -110,6 +110,11 @@ pub trait Real:
     fn le(self, other: Self) -> Self::Mask;
     /// `if mask { on_true } else { on_false }`, lane by lane; both arms are always evaluated.
     fn select(mask: Self::Mask, on_true: Self, on_false: Self) -> Self;
+    /// Whether `mask` holds in every lane, as far as the code can know where it runs: the
+    /// `bool` itself for `f32` and `f64`, every lane for SIMD lanes, and always `false` in
+    /// traced code, which does not branch on data. Callers use it only to skip work whose
+    /// result a [`Real::select`] would discard, so every answer gives the same values.
+    fn every_lane(mask: Self::Mask) -> bool;
     /// The values of every channel of `table` at `coords` (one coordinate per axis, in the
     /// axes' units): a texture fetch, with the semantics of
     /// [`crate::lut::Table::lookup_into`] (multilinear interpolation between the samples,
@@ -294,6 +299,10 @@ macro_rules! impl_real_for_float {
             #[inline(always)]
             fn le(self, other: Self) -> bool {
                 self <= other
+            }
+            #[inline(always)]
+            fn every_lane(mask: bool) -> bool {
+                mask
             }
             #[inline(always)]
             fn select(mask: bool, on_true: Self, on_false: Self) -> Self {

@@ -280,6 +280,10 @@ macro_rules! impl_real_for_lanes {
             fn select(mask: Self, on_true: Self, on_false: Self) -> Self {
                 mask.select(on_true, on_false)
             }
+            #[inline(always)]
+            fn every_lane(mask: Self) -> bool {
+                mask.all()
+            }
             /// The scalar `f32` lookup lane by lane (a gather): bit for bit the scalar result.
             fn sample_table<const D: usize, const C: usize>(
                 table: &SharedTable<D, C>,

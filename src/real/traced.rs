@@ -1527,6 +1527,10 @@ impl Real for Traced {
             &[self.trace, other.trace],
         ))
     }
+    /// Always `false`: shader code evaluates both arms and selects.
+    fn every_lane(_mask: TracedMask) -> bool {
+        false
+    }
     fn select(mask: TracedMask, on_true: Self, on_false: Self) -> Self {
         Traced::from_record(record(
             Node::Select(mask.node, on_true.node, on_false.node),
