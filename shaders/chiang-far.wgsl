@@ -141,16 +141,11 @@ fn exit_angle(p: f32, gamma_i: f32, gamma_t: f32) -> f32 {
 fn trimmed_logistics(dphi_r: f32, dphi_tt: f32, dphi_trt: f32, logistic_inv_scale: f32, logistic_norm: f32) -> TrimmedLogistics {
     let _e8 = exp((-(abs(dphi_r)) * logistic_inv_scale));
     let _e10 = (1f + _e8);
-    let _e11 = (_e10 * _e10);
-    let _e15 = exp((-(abs(dphi_tt)) * logistic_inv_scale));
-    let _e16 = (1f + _e15);
-    let _e17 = (_e16 * _e16);
-    let _e21 = exp((-(abs(dphi_trt)) * logistic_inv_scale));
-    let _e22 = (1f + _e21);
-    let _e23 = (_e22 * _e22);
-    let _e27 = (logistic_norm / (((1f * _e11) * _e17) * _e23));
-    let _e31 = (_e27 * _e11);
-    return TrimmedLogistics((_e8 * ((_e27 * _e17) * _e23)), (_e15 * (_e31 * _e23)), (_e21 * (_e31 * _e17)));
+    let _e17 = exp((-(abs(dphi_tt)) * logistic_inv_scale));
+    let _e18 = (1f + _e17);
+    let _e25 = exp((-(abs(dphi_trt)) * logistic_inv_scale));
+    let _e26 = (1f + _e25);
+    return TrimmedLogistics(((_e8 * logistic_norm) / (_e10 * _e10)), ((_e17 * logistic_norm) / (_e18 * _e18)), ((_e25 * logistic_norm) / (_e26 * _e26)));
 }
 
 // hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature

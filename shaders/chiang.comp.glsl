@@ -131,16 +131,11 @@ float exit_angle(float p, float gamma_i, float gamma_t) {
 TrimmedLogistics trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, float logistic_inv_scale, float logistic_norm) {
     float _e8 = exp((-(abs(dphi_r)) * logistic_inv_scale));
     float _e10 = (1.0 + _e8);
-    float _e11 = (_e10 * _e10);
-    float _e15 = exp((-(abs(dphi_tt)) * logistic_inv_scale));
-    float _e16 = (1.0 + _e15);
-    float _e17 = (_e16 * _e16);
-    float _e21 = exp((-(abs(dphi_trt)) * logistic_inv_scale));
-    float _e22 = (1.0 + _e21);
-    float _e23 = (_e22 * _e22);
-    float _e27 = (logistic_norm / (((1.0 * _e11) * _e17) * _e23));
-    float _e31 = (_e27 * _e11);
-    return TrimmedLogistics((_e8 * ((_e27 * _e17) * _e23)), (_e15 * (_e31 * _e23)), (_e21 * (_e31 * _e17)));
+    float _e17 = exp((-(abs(dphi_tt)) * logistic_inv_scale));
+    float _e18 = (1.0 + _e17);
+    float _e25 = exp((-(abs(dphi_trt)) * logistic_inv_scale));
+    float _e26 = (1.0 + _e25);
+    return TrimmedLogistics(((_e8 * logistic_norm) / (_e10 * _e10)), ((_e17 * logistic_norm) / (_e18 * _e18)), ((_e25 * logistic_norm) / (_e26 * _e26)));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7

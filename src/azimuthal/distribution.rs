@@ -1,4 +1,4 @@
-use crate::real::{array_from_fn, map_array, pi, Real, ShaderLoop, Shape};
+use crate::real::{map_array, pi, Real, ShaderLoop, Shape};
 
 /// `(e, (1 + e)^2)` with `e = e^(-|x| / s)`, from `inv_scale = 1 / s`: the logistic density
 /// is `e / (s (1 + e)^2)`. Written with `|x|` so the exponential never overflows.
@@ -54,37 +54,23 @@ impl<R: Real> TrimmedLogistic<R> {
         }
     }
 
-    /// The density at `x` in [-pi, pi].
+    /// The density at `x` in [-pi, pi]: `D(x) = e norm / (1 + e)^2`, `e = e^(-|x|/s)`.
     #[inline(always)]
     pub fn density(&self, x: R) -> R {
-        self.densities([x])[0]
+        let (e, d) = logistic_parts(x, self.inv_scale);
+        e * self.norm / d
     }
 
-    /// The density at `N` points in [-pi, pi], with one division for all of them:
-    /// `D(x_p) = e_p norm prod_{q != p} d_q / prod_q d_q`, `d_q = (1 + e_q)^2` in [1, 4].
+    /// The density at `N` points in [-pi, pi], each with its own division: one division shared
+    /// by all (`prod_q d_q`, then products of the others) made the batch kernel 6 per cent
+    /// slower with AVX-512 (`benches/bcsdf.rs`, `eval/host soa`), its chain of dependent
+    /// operations being longer.
     #[inline(always)]
     pub fn densities<const N: usize>(&self, x: [R; N]) -> [R; N] {
-        let parts = map_array(
+        map_array(
             x,
             #[inline(always)]
-            |x| logistic_parts(x, self.inv_scale),
-        );
-        let mut product = R::c(1.0);
-        for &(_, d) in &parts {
-            product *= d;
-        }
-        let r = self.norm / product;
-        array_from_fn(
-            #[inline(always)]
-            |p| {
-                let mut others = r;
-                for (q, &(_, d)) in parts.iter().enumerate() {
-                    if q != p {
-                        others *= d;
-                    }
-                }
-                parts[p].0 * others
-            },
+            |x| self.density(x),
         )
     }
 

@@ -479,8 +479,8 @@ impl<R: Real, O> ChiangHair<R, O> {
 
     /// The azimuthal factors at `at`'s offset (clamped to [-1, 1]) and relative azimuth
     /// `phi = phi_i - phi_o`: `(A_p N_p per channel, w_p N_p)`.
-    /// `N_p` is the trimmed logistic about the exit angle Phi(p) for p < 3 (the three share one
-    /// division, [`TrimmedLogistic::densities`]) and `1 / (2 pi)` for the residual; `w_p` are
+    /// `N_p` is the trimmed logistic about the exit angle Phi(p) for p < 3
+    /// ([`TrimmedLogistic::densities`]) and `1 / (2 pi)` for the residual; `w_p` are
     /// the lobe-choice probabilities of sampling, computed only `WITH_PDF` (a type-level
     /// constant, so the traced code has no data-dependent branch; evaluation needs no pdf).
     #[inline(always)]
