@@ -435,7 +435,7 @@ impl<'a> DirectionSlices<'a> {
     /// # Panics
     /// If `range` is outside a component (callers check the lengths first).
     #[cfg(feature = "parallel")]
-    fn range(&self, range: core::ops::Range<usize>) -> DirectionSlices<'a> {
+    pub(crate) fn range(&self, range: core::ops::Range<usize>) -> DirectionSlices<'a> {
         DirectionSlices {
             x: &self.x[range.clone()],
             y: &self.y[range.clone()],
@@ -502,13 +502,23 @@ pub(crate) fn check_soa(
     h: &[f32],
     out: &RgbSlices,
 ) -> Result<(), BatchError> {
+    check_soa_lengths(wi, wo, h, out)?;
+    check_soa_samples(wi, wo, h)
+}
+
+/// The length checks of [`check_soa`].
+pub(crate) fn check_soa_lengths(
+    wi: &DirectionSlices,
+    wo: &DirectionSlices,
+    h: &[f32],
+    out: &RgbSlices,
+) -> Result<(), BatchError> {
     let outputs = [
         ("out.r", out.r.len()),
         ("out.g", out.g.len()),
         ("out.b", out.b.len()),
     ];
-    check_components(wi, wo, h, &outputs)?;
-    check_soa_samples(wi, wo, h)
+    check_components(wi, wo, h, &outputs)
 }
 
 /// [`eval_batch_soa`] of samples already checked (always inlined, as [`eval_checked`]).
@@ -592,7 +602,7 @@ fn check_components(
 /// [`check_samples`] of a structure of arrays (lengths already checked): a branch-free pass
 /// first, as there (always inlined), then the search for the first bad sample.
 #[inline(always)]
-fn check_soa_samples(
+pub(crate) fn check_soa_samples(
     wi: &DirectionSlices,
     wo: &DirectionSlices,
     h: &[f32],
@@ -726,9 +736,10 @@ pub fn par_eval_batch<L: BatchLanes, M: Bcsdf<L> + Sync>(
     h: &[f32],
     out: &mut [[f32; 3]],
 ) -> Result<(), BatchError> {
-    check_batch(wi, wo, h, out.len())?;
+    par_check_batch(wi, wo, h, out.len(), check_samples)?;
     for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
-        eval_batch(model, wi, wo, h, out)
+        eval_checked(model, wi, wo, h, out);
+        Ok(())
     })
 }
 
@@ -745,9 +756,10 @@ pub fn par_pdf_batch<L: BatchLanes, M: SampledBcsdf<L> + Sync>(
     h: &[f32],
     out: &mut [f32],
 ) -> Result<(), BatchError> {
-    check_batch(wi, wo, h, out.len())?;
+    par_check_batch(wi, wo, h, out.len(), check_samples)?;
     for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
-        pdf_batch(model, wi, wo, h, out)
+        pdf_checked(model, wi, wo, h, out);
+        Ok(())
     })
 }
 
@@ -781,11 +793,49 @@ pub fn par_eval_batch_soa<L: BatchLanes, M: Bcsdf<L> + Sync>(
     h: &[f32],
     out: RgbSlices<'_>,
 ) -> Result<(), BatchError> {
-    check_soa(&wi, &wo, h, &out)?;
+    check_soa_lengths(&wi, &wo, h, &out)?;
+    par_check(h.len(), |r| {
+        check_soa_samples(&wi.range(r.clone()), &wo.range(r.clone()), &h[r])
+    })?;
     for_each_parallel_soa_chunk(wi, wo, h, out, |wi, wo, h, out| {
         eval_soa_checked(model, wi, wo, h, out)
     });
     Ok(())
+}
+
+/// The checks of [`check_batch`] with the samples checked by `samples` on rayon's pool
+/// ([`par_check`]).
+#[cfg(feature = "parallel")]
+pub(crate) fn par_check_batch(
+    wi: &[[f32; 3]],
+    wo: &[[f32; 3]],
+    h: &[f32],
+    out: usize,
+    samples: impl Fn(&[[f32; 3]], &[[f32; 3]], &[f32]) -> Result<(), BatchError> + Sync,
+) -> Result<(), BatchError> {
+    check(wi.len(), wo.len(), h.len(), out)?;
+    par_check(h.len(), |r| samples(&wi[r.clone()], &wo[r.clone()], &h[r]))
+}
+
+/// The sample checks of a batch of `len` samples on rayon's pool: `check` of each range of
+/// [`PARALLEL_CHUNK`] samples, and the error of the first range that fails, its index shifted
+/// to the whole batch, so the error of the sequential check. Every range is checked before
+/// any output is written, as in the sequential batch (the check streams the whole input from
+/// memory: on one thread it was a fifth of the parallel batch's time on two).
+#[cfg(feature = "parallel")]
+pub(crate) fn par_check(
+    len: usize,
+    check: impl Fn(core::ops::Range<usize>) -> Result<(), BatchError> + Sync,
+) -> Result<(), BatchError> {
+    use rayon::prelude::*;
+    let first_error = (0..len.div_ceil(PARALLEL_CHUNK))
+        .into_par_iter()
+        .map(|chunk| {
+            let start = chunk * PARALLEL_CHUNK;
+            check(start..len.min(start + PARALLEL_CHUNK)).map_err(|e| e.shifted(start))
+        })
+        .find_first(Result::is_err);
+    first_error.unwrap_or(Ok(()))
 }
 
 /// Runs `f` on chunks of [`PARALLEL_CHUNK`] samples of a structure of arrays in parallel
@@ -1260,8 +1310,10 @@ pub(crate) mod tests {
             let expected_bits: Vec<u32> = expected_pdf.iter().map(|x| x.to_bits()).collect();
             assert_eq!(pdf_bits, expected_bits, "{threads} threads");
         }
+        // Two bad samples in different chunks: the error is the first one's.
         let mut bad = wi.clone();
         bad[2 * PARALLEL_CHUNK + 1] = [f32::NAN, 0.0, 1.0];
+        bad[3 * PARALLEL_CHUNK + 3] = [0.0; 3];
         let mut out = vec![[7.0_f32; 3]; n];
         let parallel = par_eval_batch(&hair, &bad, &wo, &h, &mut out).unwrap_err();
         let sequential = eval_batch(&hair, &bad, &wo, &h, &mut expected).unwrap_err();
@@ -1292,8 +1344,8 @@ pub(crate) mod tests {
     /// The parallel structure-of-arrays batch ([`par_eval_batch_soa`] and
     /// [`crate::bcsdf::HostBatch::par_eval_soa`] on every instruction set the CPU runs) is the
     /// sequential one bit for bit, in pools of one to three threads, on a length that is no
-    /// multiple of the chunk or the lanes; a bad sample in the third chunk is the sequential
-    /// batch's error, with `out` untouched.
+    /// multiple of the chunk or the lanes; bad samples in the third and fourth chunks are the
+    /// sequential batch's error (the first), with `out` untouched.
     #[cfg(feature = "parallel")]
     #[test]
     fn the_parallel_structure_of_arrays_batch_is_the_sequential_one() {
@@ -1307,6 +1359,7 @@ pub(crate) mod tests {
         let c = soa_components(&wi, &wo);
         let mut bad = c.clone();
         bad[1][2 * PARALLEL_CHUNK + 1] = f32::NAN;
+        bad[3][3 * PARALLEL_CHUNK + 3] = 0.0;
         fn directions(c: &[Vec<f32>; 6]) -> (DirectionSlices<'_>, DirectionSlices<'_>) {
             let slices = |k: usize| DirectionSlices {
                 x: &c[k],

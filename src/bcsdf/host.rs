@@ -16,6 +16,8 @@ use super::batch::{
     check_batch, check_soa, eval_checked, eval_soa_checked, BatchError, BatchEval, BatchReal,
     DirectionSlices, RgbSlices,
 };
+#[cfg(feature = "parallel")]
+use super::batch::{check_samples, check_soa_lengths, check_soa_samples};
 use super::model::Model;
 use crate::real::InstructionSet;
 #[cfg(target_arch = "x86_64")]
@@ -194,7 +196,10 @@ impl<M: Model> HostBatch<M> {
     where
         Self: Sync,
     {
-        on_lanes!(&self.lanes, |_model| check_batch(wi, wo, h, out.len()))?;
+        let samples = |wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]| {
+            on_lanes!(&self.lanes, |_model| check_samples(wi, wo, h))
+        };
+        super::batch::par_check_batch(wi, wo, h, out.len(), samples)?;
         super::batch::for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
             on_lanes!(&self.lanes, |model| eval_checked(model, wi, wo, h, out));
             Ok(())
@@ -218,7 +223,11 @@ impl<M: Model> HostBatch<M> {
     where
         Self: Sync,
     {
-        on_lanes!(&self.lanes, |_model| check_soa(&wi, &wo, h, &out))?;
+        check_soa_lengths(&wi, &wo, h, &out)?;
+        super::batch::par_check(h.len(), |r| {
+            let (wi, wo) = (wi.range(r.clone()), wo.range(r.clone()));
+            on_lanes!(&self.lanes, |_model| check_soa_samples(&wi, &wo, &h[r]))
+        })?;
         super::batch::for_each_parallel_soa_chunk(wi, wo, h, out, |wi, wo, h, out| {
             on_lanes!(&self.lanes, |model| eval_soa_checked(model, wi, wo, h, out));
         });
