@@ -88,8 +88,8 @@ impl<R: Real> Refraction<R> {
                 let cos_gamma_t = safe_sqrt(one - sin_gamma_t * sin_gamma_t);
                 let (cos_gamma_o, fresnel) = entry(self.cos_theta, h, self.eta, self.inv_eta);
                 [
-                    h.atan2(cos_gamma_o),
-                    sin_gamma_t.atan2(cos_gamma_t),
+                    h.asin_with_cos(cos_gamma_o),
+                    sin_gamma_t.asin_with_cos(cos_gamma_t),
                     segment_length(cos_gamma_t, self.inv_cos_theta_t, length),
                     fresnel,
                 ]

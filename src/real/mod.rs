@@ -96,6 +96,15 @@ pub trait Real:
     fn cos(self) -> Self;
     /// Four-quadrant arc tangent of `self / x`; callers never pass (0, 0).
     fn atan2(self, x: Self) -> Self;
+    /// The angle in [-pi/2, pi/2] whose sine is `self` (in [-1, 1]) and whose cosine is `cos`,
+    /// which callers pass as they computed it, `sqrt(1 - self^2)`: `atan2(self, cos)` here, in
+    /// `f32`, `f64` and traced code (shader code keeps its `atan2`). The SIMD lanes override it
+    /// with a polynomial in the smaller of `|self|` and `cos`, which needs no division (their
+    /// `atan2` needs one).
+    #[inline(always)]
+    fn asin_with_cos(self, cos: Self) -> Self {
+        self.atan2(cos)
+    }
     /// Absolute value.
     fn abs(self) -> Self;
     /// Smaller of two values.
