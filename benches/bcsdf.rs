@@ -1,7 +1,8 @@
 //! Throughput of the Chiang 2016 hair BCSDF: evaluation, sampling and pdf in f64 and f32
 //! (scalar), eval/pdf batched over `wide::f32x8` and `wide::f32x16` lanes (eval also from a
 //! structure of arrays, `eval_batch_soa`, against the array of structures), and eval on each
-//! instruction set the CPU runs (`HostBatch`, chosen at run time: `eval/host/Avx512`, ...).
+//! instruction set the CPU runs (`HostBatch`, chosen at run time: `eval/host/Avx512`, ...;
+//! `eval/host soa/Avx512`, ... from a structure of arrays).
 //!
 //! Every benchmark processes the same 1024 deterministic samples per iteration and reports
 //! `Throughput::Elements(1024)`, so criterion's time divided by 1024 is the cost of one
