@@ -354,6 +354,25 @@ mod tests {
     use super::*;
     use crate::real::wrap_angle;
 
+    /// `$check::<L, N>($args..., L::to_array)` on every lane type the CPU runs: `wide`'s, and
+    /// the instruction sets' where supported.
+    macro_rules! on_every_lane_type {
+        ($check:ident $(, $arg:expr)*) => {{
+            $check::<f32x16, 16>($($arg,)* f32x16::to_array);
+            $check::<f32x8, 8>($($arg,)* f32x8::to_array);
+            #[cfg(target_arch = "x86_64")]
+            {
+                use crate::real::InstructionSet;
+                if InstructionSet::Avx512.is_supported() {
+                    $check::<Avx512Lanes, 16>($($arg,)* Avx512Lanes::to_array);
+                }
+                if InstructionSet::Avx2.is_supported() {
+                    $check::<Avx2Lanes, 8>($($arg,)* Avx2Lanes::to_array);
+                }
+            }
+        }};
+    }
+
     #[test]
     fn lanes_agree_with_scalar_code() {
         let xs = [-7.0_f32, -3.2, -0.5, 0.0, 0.25, 1.0, 3.3, 9.9];
@@ -418,18 +437,7 @@ mod tests {
                 }
             }
         }
-        check::<f32x16, 16>(&xs, f32x16::to_array);
-        check::<f32x8, 8>(&xs, f32x8::to_array);
-        #[cfg(target_arch = "x86_64")]
-        {
-            use crate::real::InstructionSet;
-            if InstructionSet::Avx512.is_supported() {
-                check::<Avx512Lanes, 16>(&xs, Avx512Lanes::to_array);
-            }
-            if InstructionSet::Avx2.is_supported() {
-                check::<Avx2Lanes, 8>(&xs, Avx2Lanes::to_array);
-            }
-        }
+        on_every_lane_type!(check, &xs);
     }
 
     #[test]
@@ -581,18 +589,7 @@ mod tests {
                 }
             }
         }
-        check::<f32x16, 16>(f32x16::to_array);
-        check::<f32x8, 8>(f32x8::to_array);
-        #[cfg(target_arch = "x86_64")]
-        {
-            use crate::real::InstructionSet;
-            if InstructionSet::Avx512.is_supported() {
-                check::<Avx512Lanes, 16>(Avx512Lanes::to_array);
-            }
-            if InstructionSet::Avx2.is_supported() {
-                check::<Avx2Lanes, 8>(Avx2Lanes::to_array);
-            }
-        }
+        on_every_lane_type!(check);
         // Elsewhere it is exp itself.
         assert_eq!((-3.5_f32).exp_of_nonpositive(), (-3.5_f32).exp());
         assert!(Real::exp_of_nonpositive(f64::NAN).is_nan());
@@ -641,18 +638,7 @@ mod tests {
                 (self as f32).to_bits()
             }
         }
-        check::<f32x16, 16>(f32x16::to_array);
-        check::<f32x8, 8>(f32x8::to_array);
-        #[cfg(target_arch = "x86_64")]
-        {
-            use crate::real::InstructionSet;
-            if InstructionSet::Avx512.is_supported() {
-                check::<Avx512Lanes, 16>(Avx512Lanes::to_array);
-            }
-            if InstructionSet::Avx2.is_supported() {
-                check::<Avx2Lanes, 8>(Avx2Lanes::to_array);
-            }
-        }
+        on_every_lane_type!(check);
         // Elsewhere it is atan2 itself.
         assert_eq!(0.3_f32.asin_with_cos(0.9), 0.3_f32.atan2(0.9));
     }
