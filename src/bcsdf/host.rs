@@ -331,6 +331,7 @@ mod tests {
                 &|wi, wo, h, out| batch.eval(wi, wo, h, out),
                 &|wi, wo, h, out| batch.eval_soa(wi, wo, h, out),
             );
+            #[cfg(feature = "parallel")]
             layouts_agree(
                 &|wi, wo, h, out| batch.eval(wi, wo, h, out),
                 &|wi, wo, h, out| {
@@ -358,7 +359,10 @@ mod tests {
                     ..
                 })
             ));
+            #[cfg(feature = "parallel")]
             let nan = batch.par_eval(&wi[..2], &wo[..2], &[0.0, f32::NAN], &mut out);
+            #[cfg(not(feature = "parallel"))]
+            let nan = batch.eval(&wi[..2], &wo[..2], &[0.0, f32::NAN], &mut out);
             assert!(matches!(nan, Err(BatchError::Offset { index: 1, .. })));
             assert_eq!(out, [[7.0; 3]; 2]);
         }

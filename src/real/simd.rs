@@ -66,6 +66,20 @@ macro_rules! floor_without_sse41 {
     }};
 }
 
+/// The polynomial with `f32` coefficients `$c`, highest first, at `x` by Horner's rule with the
+/// lanes' own `mul_add`: the polynomials of the lanes' `exp`, `atan2` and `asin_with_cos`.
+macro_rules! horner_highest_first {
+    ($t:ident, $x:expr, $c:expr) => {{
+        let x: $t = $x;
+        let [highest, lower @ ..] = $c;
+        let mut p = $t::splat(highest);
+        for c in lower {
+            p = p.mul_add(x, $t::splat(c));
+        }
+        p
+    }};
+}
+
 /// `exp` with the range reduction and polynomial of `wide`'s `exp` (Cephes: `x = r ln 2 + f`,
 /// |f| <= ln 2 / 2, degree-7 polynomial, about 1 ulp) but without its data-dependent branches
 /// and its eight special-case selects: the argument is clamped to [-87.34, 88.72] so that
@@ -136,12 +150,8 @@ macro_rules! exp_reduced {
         let (c, r): ($t, $t) = ($c, $r);
         let f = r.mul_neg_add($t::splat(0.693_359_4), c);
         let f = r.mul_neg_add($t::splat(-2.121_944_4e-4), f);
-        // e^f = 1 + f + f^2 P(f), P by Horner from its highest coefficient.
-        let [highest, lower @ ..] = $p;
-        let mut z = $t::splat(highest);
-        for c in lower {
-            z = z.mul_add(f, $t::splat(c));
-        }
+        // e^f = 1 + f + f^2 P(f).
+        let z = horner_highest_first!($t, f, $p);
         let z = z.mul_add(f * f, f) + $t::ONE;
         // 2^r for integer r in [-126, 127]: the biased exponent r + 127 shifted into place.
         let scale = ExponentField::shifted_into_exponent(r + $t::splat(8_388_608.0 + 127.0));
@@ -160,11 +170,7 @@ macro_rules! lean_asin_with_cos {
         let beyond = cos.simd_lt(a);
         let u = beyond.select(cos, a);
         let z = u * u;
-        let [highest, lower @ ..] = ASIN_MINIMAX;
-        let mut p = $t::splat(highest);
-        for c in lower {
-            p = p.mul_add(z, $t::splat(c));
-        }
+        let p = horner_highest_first!($t, z, ASIN_MINIMAX);
         let angle = (p * z).mul_add(u, u);
         let angle = beyond.select($t::FRAC_PI_2 - angle, angle);
         angle | (sin & $t::splat(-0.0))
@@ -201,10 +207,16 @@ macro_rules! lean_atan2 {
         let z = not_small.select(small - large, small) / not_small.select(small + large, large);
         let offset = not_small & $t::FRAC_PI_4;
         let zz = z * z;
-        let mut p = $t::splat(8.053_744_5e-2);
-        for c in [-1.387_768_6e-1, 1.997_771_1e-1, -3.333_295e-1] {
-            p = p.mul_add(zz, $t::splat(c));
-        }
+        let p = horner_highest_first!(
+            $t,
+            zz,
+            [
+                8.053_744_5e-2,
+                -1.387_768_6e-1,
+                1.997_771_1e-1,
+                -3.333_295e-1
+            ]
+        );
         let mut re = p.mul_add(zz * z, z) + offset;
         re = swap.select($t::FRAC_PI_2 - re, re);
         re = (x | y).simd_eq($t::ZERO).select($t::ZERO, re);
