@@ -27,7 +27,7 @@ struct ChiangUniforms {
     float inv_eta;
     vec3 sigma_a;
 };
-struct FarFieldNodeElement {
+struct FarFieldNodePairElement {
     float h;
     float weight;
 };
@@ -55,7 +55,7 @@ struct TrimmedLogistics {
     float tt;
     float trt;
 };
-struct FarFieldNode {
+struct FarFieldNodePair {
     vec3 r;
     vec3 tt;
     vec3 trt;
@@ -87,7 +87,7 @@ const float BESSEL_I0_INV_SWITCH = 0.26666668;
 const float BESSEL_I0_NEAR[7] = float[7](1.0, 3.5156229, 3.0899425, 1.2067492, 0.2659732, 0.0360768, 0.0045813);
 // Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
 const float BESSEL_I0_FAR[9] = float[9](0.3989423, 0.01328592, 0.00225319, -0.00157565, 0.00916281, -0.02057706, 0.02635537, -0.01647633, 0.00392377);
-const FarFieldNodeElement FAR_FIELD_OFFSETS[64] = FarFieldNodeElement[64](FarFieldNodeElement(0.9999994, 1.5289318e-6), FarFieldNodeElement(0.9999835, 1.872458e-5), FarFieldNodeElement(0.99990034, 7.211129e-5), FarFieldNodeElement(0.99965745, 0.00018185156), FarFieldNodeElement(0.9991224, 0.0003673992), FarFieldNodeElement(0.99812496, 0.0006472144), FarFieldNodeElement(0.99645925, 0.0010384569), FarFieldNodeElement(0.9938865, 0.0015566545), FarFieldNodeElement(0.9901389, 0.00221535), FarFieldNodeElement(0.9849239, 0.0030257301), FarFieldNodeElement(0.9779291, 0.003996244), FarFieldNodeElement(0.9688285, 0.005132225), FarFieldNodeElement(0.9572886, 0.006435525), FarFieldNodeElement(0.94297606, 0.007904187), FarFieldNodeElement(0.92556554, 0.009532163), FarFieldNodeElement(0.904748, 0.011309116), FarFieldNodeElement(0.8802395, 0.013220307), FarFieldNodeElement(0.85178995, 0.015246595), FarFieldNodeElement(0.81919193, 0.017364576), FarFieldNodeElement(0.78228873, 0.019546852), FarFieldNodeElement(0.74098223, 0.021762462), FarFieldNodeElement(0.69523925, 0.023977457), FarFieldNodeElement(0.6450969, 0.02615561), FarFieldNodeElement(0.5906664, 0.028259275), FarFieldNodeElement(0.5321349, 0.030250335), FarFieldNodeElement(0.46976525, 0.032091226), FarFieldNodeElement(0.4038941, 0.033746015), FarFieldNodeElement(0.33492747, 0.035181463), FarFieldNodeElement(0.26333427, 0.036368046), FarFieldNodeElement(0.18963791, 0.03728089), FarFieldNodeElement(0.11440627, 0.037900586), FarFieldNodeElement(0.038240023, 0.03821382), FarFieldNodeElement(-0.038240023, 0.03821382), FarFieldNodeElement(-0.11440627, 0.037900586), FarFieldNodeElement(-0.18963791, 0.03728089), FarFieldNodeElement(-0.26333427, 0.036368046), FarFieldNodeElement(-0.33492747, 0.035181463), FarFieldNodeElement(-0.4038941, 0.033746015), FarFieldNodeElement(-0.46976525, 0.032091226), FarFieldNodeElement(-0.5321349, 0.030250335), FarFieldNodeElement(-0.5906664, 0.028259275), FarFieldNodeElement(-0.6450969, 0.02615561), FarFieldNodeElement(-0.69523925, 0.023977457), FarFieldNodeElement(-0.74098223, 0.021762462), FarFieldNodeElement(-0.78228873, 0.019546852), FarFieldNodeElement(-0.81919193, 0.017364576), FarFieldNodeElement(-0.85178995, 0.015246595), FarFieldNodeElement(-0.8802395, 0.013220307), FarFieldNodeElement(-0.904748, 0.011309116), FarFieldNodeElement(-0.92556554, 0.009532163), FarFieldNodeElement(-0.94297606, 0.007904187), FarFieldNodeElement(-0.9572886, 0.006435525), FarFieldNodeElement(-0.9688285, 0.005132225), FarFieldNodeElement(-0.9779291, 0.003996244), FarFieldNodeElement(-0.9849239, 0.0030257301), FarFieldNodeElement(-0.9901389, 0.00221535), FarFieldNodeElement(-0.9938865, 0.0015566545), FarFieldNodeElement(-0.99645925, 0.0010384569), FarFieldNodeElement(-0.99812496, 0.0006472144), FarFieldNodeElement(-0.9991224, 0.0003673992), FarFieldNodeElement(-0.99965745, 0.00018185156), FarFieldNodeElement(-0.99990034, 7.211129e-5), FarFieldNodeElement(-0.9999835, 1.872458e-5), FarFieldNodeElement(-0.9999994, 1.5289318e-6));
+const FarFieldNodePairElement FAR_FIELD_OFFSET_PAIRS[32] = FarFieldNodePairElement[32](FarFieldNodePairElement(0.9999994, 1.5289318e-6), FarFieldNodePairElement(0.9999835, 1.872458e-5), FarFieldNodePairElement(0.99990034, 7.211129e-5), FarFieldNodePairElement(0.99965745, 0.00018185156), FarFieldNodePairElement(0.9991224, 0.0003673992), FarFieldNodePairElement(0.99812496, 0.0006472144), FarFieldNodePairElement(0.99645925, 0.0010384569), FarFieldNodePairElement(0.9938865, 0.0015566545), FarFieldNodePairElement(0.9901389, 0.00221535), FarFieldNodePairElement(0.9849239, 0.0030257301), FarFieldNodePairElement(0.9779291, 0.003996244), FarFieldNodePairElement(0.9688285, 0.005132225), FarFieldNodePairElement(0.9572886, 0.006435525), FarFieldNodePairElement(0.94297606, 0.007904187), FarFieldNodePairElement(0.92556554, 0.009532163), FarFieldNodePairElement(0.904748, 0.011309116), FarFieldNodePairElement(0.8802395, 0.013220307), FarFieldNodePairElement(0.85178995, 0.015246595), FarFieldNodePairElement(0.81919193, 0.017364576), FarFieldNodePairElement(0.78228873, 0.019546852), FarFieldNodePairElement(0.74098223, 0.021762462), FarFieldNodePairElement(0.69523925, 0.023977457), FarFieldNodePairElement(0.6450969, 0.02615561), FarFieldNodePairElement(0.5906664, 0.028259275), FarFieldNodePairElement(0.5321349, 0.030250335), FarFieldNodePairElement(0.46976525, 0.032091226), FarFieldNodePairElement(0.4038941, 0.033746015), FarFieldNodePairElement(0.33492747, 0.035181463), FarFieldNodePairElement(0.26333427, 0.036368046), FarFieldNodePairElement(0.18963791, 0.03728089), FarFieldNodePairElement(0.11440627, 0.037900586), FarFieldNodePairElement(0.038240023, 0.03821382));
 
 layout(std430, binding = 0) readonly buffer type_6_block_0Compute { float _group_0_binding_0_cs[]; };
 
@@ -149,8 +149,8 @@ TrimmedLogistics trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, 
     return TrimmedLogistics(((_e8 * logistic_norm) / (_e10 * _e10)), ((_e17 * logistic_norm) / (_e18 * _e18)), ((_e25 * logistic_norm) / (_e26 * _e26)));
 }
 
-// hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature
-FarFieldNode far_field_node(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 residual_in, float h, float weight, float sin_theta_o, float inv_eta, float cos_theta_o, float eta, vec3 sigma_a, float phi, float logistic_inv_scale, float logistic_norm) {
+// hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature, the nodes h and -h sharing A_p
+FarFieldNodePair far_field_node_pair(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 residual_in, float h, float weight, float sin_theta_o, float inv_eta, float cos_theta_o, float eta, vec3 sigma_a, float phi, float logistic_inv_scale, float logistic_norm) {
     float _e26 = (sin_theta_o * inv_eta);
     float cos_theta_t = sqrt(max((1.0 - (_e26 * _e26)), 0.0));
     float inv_cos_theta_t = (1.0 / cos_theta_t);
@@ -165,7 +165,20 @@ FarFieldNode far_field_node(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 residual_in
     float _e84 = exit_angle(2.0, _e34.gamma_o, _e34.gamma_t);
     float _e85 = (phi - _e84);
     TrimmedLogistics _e91 = trimmed_logistics((_e67 - (TWO_PI * floor(((_e67 + PI) * INV_TWO_PI)))), (_e77 - (TWO_PI * floor(((_e77 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    return FarFieldNode((r_in + (weight * (vec3(_e43.r, _e52.r, _e61.r) * _e91.r))), (tt_in + (weight * (vec3(_e43.tt, _e52.tt, _e61.tt) * _e91.tt))), (trt_in + (weight * (vec3(_e43.trt, _e52.trt, _e61.trt) * _e91.trt))), (residual_in + (weight * (vec3(_e43.residual, _e52.residual, _e61.residual) * INV_TWO_PI))));
+    float _e95 = -(_e34.gamma_o);
+    float _e96 = -(_e34.gamma_t);
+    float _e97 = exit_angle(0.0, _e95, _e96);
+    float _e98 = (phi - _e97);
+    float _e104 = exit_angle(1.0, _e95, _e96);
+    float _e105 = (phi - _e104);
+    float _e111 = exit_angle(2.0, _e95, _e96);
+    float _e112 = (phi - _e111);
+    TrimmedLogistics _e118 = trimmed_logistics((_e98 - (TWO_PI * floor(((_e98 + PI) * INV_TWO_PI)))), (_e105 - (TWO_PI * floor(((_e105 + PI) * INV_TWO_PI)))), (_e112 - (TWO_PI * floor(((_e112 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
+    float _e122 = (_e91.r + _e118.r);
+    float _e123 = (_e91.tt + _e118.tt);
+    float _e124 = (_e91.trt + _e118.trt);
+    float _e125 = (INV_TWO_PI + INV_TWO_PI);
+    return FarFieldNodePair((r_in + (weight * (vec3(_e43.r, _e52.r, _e61.r) * _e122))), (tt_in + (weight * (vec3(_e43.tt, _e52.tt, _e61.tt) * _e123))), (trt_in + (weight * (vec3(_e43.trt, _e52.trt, _e61.trt) * _e124))), (residual_in + (weight * (vec3(_e43.residual, _e52.residual, _e61.residual) * _e125))));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
@@ -204,7 +217,7 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
         }
         loop_init = false;
         uint _e47 = k;
-        if ((_e47 < 64u)) {
+        if ((_e47 < 32u)) {
         } else {
             break;
         }
@@ -213,7 +226,7 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
         vec3 _e54 = tt;
         vec3 _e55 = trt;
         vec3 _e56 = residual;
-        FarFieldNode _e59 = far_field_node(_e53, _e54, _e55, _e56, FAR_FIELD_OFFSETS[_e51].h, FAR_FIELD_OFFSETS[_e51].weight, _e30.sin_theta_o, uniforms.inv_eta, _e30.cos_theta_o, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        FarFieldNodePair _e59 = far_field_node_pair(_e53, _e54, _e55, _e56, FAR_FIELD_OFFSET_PAIRS[_e51].h, FAR_FIELD_OFFSET_PAIRS[_e51].weight, _e30.sin_theta_o, uniforms.inv_eta, _e30.cos_theta_o, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
         r = _e59.r;
         tt = _e59.tt;
         trt = _e59.trt;

@@ -23,7 +23,7 @@ struct ChiangUniforms {
     sigma_a: vec3<f32>,
 }
 
-struct FarFieldNodeElement {
+struct FarFieldNodePairElement {
     h: f32,
     weight: f32,
 }
@@ -56,7 +56,7 @@ struct TrimmedLogistics {
     trt: f32,
 }
 
-struct FarFieldNode {
+struct FarFieldNodePair {
     r: vec3<f32>,
     tt: vec3<f32>,
     trt: vec3<f32>,
@@ -91,7 +91,7 @@ const BESSEL_I0_INV_SWITCH: f32 = 0.26666668f;
 const BESSEL_I0_NEAR: array<f32, 7> = array<f32, 7>(1f, 3.5156229f, 3.0899425f, 1.2067492f, 0.2659732f, 0.0360768f, 0.0045813f);
 // Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
 const BESSEL_I0_FAR: array<f32, 9> = array<f32, 9>(0.3989423f, 0.01328592f, 0.00225319f, -0.00157565f, 0.00916281f, -0.02057706f, 0.02635537f, -0.01647633f, 0.00392377f);
-const FAR_FIELD_OFFSETS: array<FarFieldNodeElement, 64> = array<FarFieldNodeElement, 64>(FarFieldNodeElement(0.9999994f, 0.0000015289318f), FarFieldNodeElement(0.9999835f, 0.00001872458f), FarFieldNodeElement(0.99990034f, 0.00007211129f), FarFieldNodeElement(0.99965745f, 0.00018185156f), FarFieldNodeElement(0.9991224f, 0.0003673992f), FarFieldNodeElement(0.99812496f, 0.0006472144f), FarFieldNodeElement(0.99645925f, 0.0010384569f), FarFieldNodeElement(0.9938865f, 0.0015566545f), FarFieldNodeElement(0.9901389f, 0.00221535f), FarFieldNodeElement(0.9849239f, 0.0030257301f), FarFieldNodeElement(0.9779291f, 0.003996244f), FarFieldNodeElement(0.9688285f, 0.005132225f), FarFieldNodeElement(0.9572886f, 0.006435525f), FarFieldNodeElement(0.94297606f, 0.007904187f), FarFieldNodeElement(0.92556554f, 0.009532163f), FarFieldNodeElement(0.904748f, 0.011309116f), FarFieldNodeElement(0.8802395f, 0.013220307f), FarFieldNodeElement(0.85178995f, 0.015246595f), FarFieldNodeElement(0.81919193f, 0.017364576f), FarFieldNodeElement(0.78228873f, 0.019546852f), FarFieldNodeElement(0.74098223f, 0.021762462f), FarFieldNodeElement(0.69523925f, 0.023977457f), FarFieldNodeElement(0.6450969f, 0.02615561f), FarFieldNodeElement(0.5906664f, 0.028259275f), FarFieldNodeElement(0.5321349f, 0.030250335f), FarFieldNodeElement(0.46976525f, 0.032091226f), FarFieldNodeElement(0.4038941f, 0.033746015f), FarFieldNodeElement(0.33492747f, 0.035181463f), FarFieldNodeElement(0.26333427f, 0.036368046f), FarFieldNodeElement(0.18963791f, 0.03728089f), FarFieldNodeElement(0.11440627f, 0.037900586f), FarFieldNodeElement(0.038240023f, 0.03821382f), FarFieldNodeElement(-0.038240023f, 0.03821382f), FarFieldNodeElement(-0.11440627f, 0.037900586f), FarFieldNodeElement(-0.18963791f, 0.03728089f), FarFieldNodeElement(-0.26333427f, 0.036368046f), FarFieldNodeElement(-0.33492747f, 0.035181463f), FarFieldNodeElement(-0.4038941f, 0.033746015f), FarFieldNodeElement(-0.46976525f, 0.032091226f), FarFieldNodeElement(-0.5321349f, 0.030250335f), FarFieldNodeElement(-0.5906664f, 0.028259275f), FarFieldNodeElement(-0.6450969f, 0.02615561f), FarFieldNodeElement(-0.69523925f, 0.023977457f), FarFieldNodeElement(-0.74098223f, 0.021762462f), FarFieldNodeElement(-0.78228873f, 0.019546852f), FarFieldNodeElement(-0.81919193f, 0.017364576f), FarFieldNodeElement(-0.85178995f, 0.015246595f), FarFieldNodeElement(-0.8802395f, 0.013220307f), FarFieldNodeElement(-0.904748f, 0.011309116f), FarFieldNodeElement(-0.92556554f, 0.009532163f), FarFieldNodeElement(-0.94297606f, 0.007904187f), FarFieldNodeElement(-0.9572886f, 0.006435525f), FarFieldNodeElement(-0.9688285f, 0.005132225f), FarFieldNodeElement(-0.9779291f, 0.003996244f), FarFieldNodeElement(-0.9849239f, 0.0030257301f), FarFieldNodeElement(-0.9901389f, 0.00221535f), FarFieldNodeElement(-0.9938865f, 0.0015566545f), FarFieldNodeElement(-0.99645925f, 0.0010384569f), FarFieldNodeElement(-0.99812496f, 0.0006472144f), FarFieldNodeElement(-0.9991224f, 0.0003673992f), FarFieldNodeElement(-0.99965745f, 0.00018185156f), FarFieldNodeElement(-0.99990034f, 0.00007211129f), FarFieldNodeElement(-0.9999835f, 0.00001872458f), FarFieldNodeElement(-0.9999994f, 0.0000015289318f));
+const FAR_FIELD_OFFSET_PAIRS: array<FarFieldNodePairElement, 32> = array<FarFieldNodePairElement, 32>(FarFieldNodePairElement(0.9999994f, 0.0000015289318f), FarFieldNodePairElement(0.9999835f, 0.00001872458f), FarFieldNodePairElement(0.99990034f, 0.00007211129f), FarFieldNodePairElement(0.99965745f, 0.00018185156f), FarFieldNodePairElement(0.9991224f, 0.0003673992f), FarFieldNodePairElement(0.99812496f, 0.0006472144f), FarFieldNodePairElement(0.99645925f, 0.0010384569f), FarFieldNodePairElement(0.9938865f, 0.0015566545f), FarFieldNodePairElement(0.9901389f, 0.00221535f), FarFieldNodePairElement(0.9849239f, 0.0030257301f), FarFieldNodePairElement(0.9779291f, 0.003996244f), FarFieldNodePairElement(0.9688285f, 0.005132225f), FarFieldNodePairElement(0.9572886f, 0.006435525f), FarFieldNodePairElement(0.94297606f, 0.007904187f), FarFieldNodePairElement(0.92556554f, 0.009532163f), FarFieldNodePairElement(0.904748f, 0.011309116f), FarFieldNodePairElement(0.8802395f, 0.013220307f), FarFieldNodePairElement(0.85178995f, 0.015246595f), FarFieldNodePairElement(0.81919193f, 0.017364576f), FarFieldNodePairElement(0.78228873f, 0.019546852f), FarFieldNodePairElement(0.74098223f, 0.021762462f), FarFieldNodePairElement(0.69523925f, 0.023977457f), FarFieldNodePairElement(0.6450969f, 0.02615561f), FarFieldNodePairElement(0.5906664f, 0.028259275f), FarFieldNodePairElement(0.5321349f, 0.030250335f), FarFieldNodePairElement(0.46976525f, 0.032091226f), FarFieldNodePairElement(0.4038941f, 0.033746015f), FarFieldNodePairElement(0.33492747f, 0.035181463f), FarFieldNodePairElement(0.26333427f, 0.036368046f), FarFieldNodePairElement(0.18963791f, 0.03728089f), FarFieldNodePairElement(0.11440627f, 0.037900586f), FarFieldNodePairElement(0.038240023f, 0.03821382f));
 
 // hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
@@ -148,8 +148,8 @@ fn trimmed_logistics(dphi_r: f32, dphi_tt: f32, dphi_trt: f32, logistic_inv_scal
     return TrimmedLogistics(((_e8 * logistic_norm) / (_e10 * _e10)), ((_e17 * logistic_norm) / (_e18 * _e18)), ((_e25 * logistic_norm) / (_e26 * _e26)));
 }
 
-// hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature
-fn far_field_node(r_in: vec3<f32>, tt_in: vec3<f32>, trt_in: vec3<f32>, residual_in: vec3<f32>, h: f32, weight: f32, sin_theta_o: f32, inv_eta: f32, cos_theta_o: f32, eta: f32, sigma_a: vec3<f32>, phi: f32, logistic_inv_scale: f32, logistic_norm: f32) -> FarFieldNode {
+// hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature, the nodes h and -h sharing A_p
+fn far_field_node_pair(r_in: vec3<f32>, tt_in: vec3<f32>, trt_in: vec3<f32>, residual_in: vec3<f32>, h: f32, weight: f32, sin_theta_o: f32, inv_eta: f32, cos_theta_o: f32, eta: f32, sigma_a: vec3<f32>, phi: f32, logistic_inv_scale: f32, logistic_norm: f32) -> FarFieldNodePair {
     let _e26 = (sin_theta_o * inv_eta);
     let cos_theta_t = sqrt(max((1f - (_e26 * _e26)), 0f));
     let inv_cos_theta_t = (1f / cos_theta_t);
@@ -164,7 +164,20 @@ fn far_field_node(r_in: vec3<f32>, tt_in: vec3<f32>, trt_in: vec3<f32>, residual
     let _e84 = exit_angle(2f, _e34.gamma_o, _e34.gamma_t);
     let _e85 = (phi - _e84);
     let _e91 = trimmed_logistics((_e67 - (TWO_PI * floor(((_e67 + PI) * INV_TWO_PI)))), (_e77 - (TWO_PI * floor(((_e77 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    return FarFieldNode((r_in + (weight * (vec3<f32>(_e43.r, _e52.r, _e61.r) * _e91.r))), (tt_in + (weight * (vec3<f32>(_e43.tt, _e52.tt, _e61.tt) * _e91.tt))), (trt_in + (weight * (vec3<f32>(_e43.trt, _e52.trt, _e61.trt) * _e91.trt))), (residual_in + (weight * (vec3<f32>(_e43.residual, _e52.residual, _e61.residual) * INV_TWO_PI))));
+    let _e95 = -(_e34.gamma_o);
+    let _e96 = -(_e34.gamma_t);
+    let _e97 = exit_angle(0f, _e95, _e96);
+    let _e98 = (phi - _e97);
+    let _e104 = exit_angle(1f, _e95, _e96);
+    let _e105 = (phi - _e104);
+    let _e111 = exit_angle(2f, _e95, _e96);
+    let _e112 = (phi - _e111);
+    let _e118 = trimmed_logistics((_e98 - (TWO_PI * floor(((_e98 + PI) * INV_TWO_PI)))), (_e105 - (TWO_PI * floor(((_e105 + PI) * INV_TWO_PI)))), (_e112 - (TWO_PI * floor(((_e112 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
+    let _e122 = (_e91.r + _e118.r);
+    let _e123 = (_e91.tt + _e118.tt);
+    let _e124 = (_e91.trt + _e118.trt);
+    let _e125 = (INV_TWO_PI + INV_TWO_PI);
+    return FarFieldNodePair((r_in + (weight * (vec3<f32>(_e43.r, _e52.r, _e61.r) * _e122))), (tt_in + (weight * (vec3<f32>(_e43.tt, _e52.tt, _e61.tt) * _e123))), (trt_in + (weight * (vec3<f32>(_e43.trt, _e52.trt, _e61.trt) * _e124))), (residual_in + (weight * (vec3<f32>(_e43.residual, _e52.residual, _e61.residual) * _e125))));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
@@ -198,7 +211,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     residual = vec3(0f);
     loop {
         let _e47 = k;
-        if (_e47 < 64u) {
+        if (_e47 < 32u) {
         } else {
             break;
         }
@@ -207,7 +220,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         let _e54 = tt;
         let _e55 = trt;
         let _e56 = residual;
-        let _e59 = far_field_node(_e53, _e54, _e55, _e56, FAR_FIELD_OFFSETS[_e51].h, FAR_FIELD_OFFSETS[_e51].weight, _e30.sin_theta_o, uniforms.inv_eta, _e30.cos_theta_o, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        let _e59 = far_field_node_pair(_e53, _e54, _e55, _e56, FAR_FIELD_OFFSET_PAIRS[_e51].h, FAR_FIELD_OFFSET_PAIRS[_e51].weight, _e30.sin_theta_o, uniforms.inv_eta, _e30.cos_theta_o, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
         r = _e59.r;
         tt = _e59.tt;
         trt = _e59.trt;

@@ -346,3 +346,53 @@ fn the_reference_is_the_near_field_averaged_over_h() {
         }
     }
 }
+
+/// The rule is symmetric to the last bit, and the far field, which evaluates the nodes h and -h
+/// with one path through the fibre (A_p is even in h, Phi(p, h) odd), equals the near field
+/// evaluated at every node and averaged with the rule's weights: per lobe and channel within
+/// 1e-13 of the lobe's largest value, for odd and even node counts, grazing and opposite
+/// directions (phi near +-pi), with and without absorption.
+#[test]
+fn mirrored_pairs_give_the_near_field_averaged_over_the_nodes() {
+    for nodes in [1, 2, 7, 64] {
+        let rule = FarFieldRule::gauss_legendre(nodes).unwrap();
+        let all = rule.nodes();
+        for (k, &(h, w)) in all.iter().enumerate() {
+            assert_eq!((-h, w), all[nodes - 1 - k], "{nodes} nodes, node {k}");
+        }
+        let pairs = rule.mirrored_pairs();
+        assert_eq!(pairs.len(), nodes.div_ceil(2));
+        let total: f64 = pairs.iter().map(|&(_, w)| 2.0 * w).sum();
+        assert!((total - 1.0).abs() < 1e-15, "{nodes} nodes: {total}");
+        for sigma_a in [[0.0; 3], [0.5, 0.8, 1.4]] {
+            let hair = params(0.3, 0.3, sigma_a);
+            let far = ChiangFarField::<f64>::with_rule(&hair, &rule);
+            let near = far.near_field();
+            for (wi, wo) in [
+                (dir(30.0, 0.3), dir(-20.0, 2.0)),
+                (dir(-89.9, 1.0), dir(10.0, 1.0 + PI - 1e-6)),
+                (dir(0.0, -1.0), dir(89.0, -1.0 - PI + 1e-4)),
+            ] {
+                let far_lobes = far.eval_lobes(&Query::far(wi, wo));
+                let mut averaged = vec![[0.0; 3]; far_lobes.len()];
+                for &(h, w) in all {
+                    let lobes = near.eval_lobes(&Query::checked(wi, wo, h).unwrap());
+                    for (sum, lobe) in averaged.iter_mut().zip(&lobes) {
+                        for c in 0..3 {
+                            sum[c] += w * lobe[c];
+                        }
+                    }
+                }
+                for (p, (f, a)) in far_lobes.iter().zip(&averaged).enumerate() {
+                    let peak = a.iter().fold(f64::MIN_POSITIVE, |m, x| m.max(x.abs()));
+                    for c in 0..3 {
+                        assert!(
+                            (f[c] - a[c]).abs() <= 1e-13 * peak,
+                            "{nodes} nodes, lobe {p}, {wi:?} {wo:?}: {f:?} against {a:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

@@ -489,9 +489,39 @@ impl<R: Real, O> ChiangHair<R, O> {
         at: Outgoing<R>,
     ) -> AzimuthalFactors<R> {
         let (path, a) = self.attenuations_at(at.sin_o, at.cos_o, at.h);
+        let n = self.distributions(at.phi, path.gamma_o, path.gamma_t);
+        azimuthal_factors::<R, WITH_PDF>(&a, n)
+    }
+
+    /// The azimuthal factors of the offsets `h` and `-h` together (`at.h` in [0, 1]):
+    /// `(A_p (N_p(h) + N_p(-h)) per channel, w_p (N_p(h) + N_p(-h)))`, for the far field's
+    /// symmetric nodes. The path's segment length and entry Fresnel term depend on `h^2`
+    /// only, so `A_p` is even in h; gamma_o = asin h and gamma_t are odd, so the exit angles
+    /// at `-h` are those of the negated angles (Marschner et al. 2003, eq. 3). One path for
+    /// two offsets.
+    #[inline(always)]
+    pub(crate) fn azimuthal_mirrored_at<const WITH_PDF: bool>(
+        &self,
+        at: Outgoing<R>,
+    ) -> AzimuthalFactors<R> {
+        let (path, a) = self.attenuations_at(at.sin_o, at.cos_o, at.h);
+        let n = self.distributions(at.phi, path.gamma_o, path.gamma_t);
+        let mirrored = self.distributions(at.phi, -path.gamma_o, -path.gamma_t);
+        let sum = array_from_fn(
+            #[inline(always)]
+            |p| n[p] + mirrored[p],
+        );
+        azimuthal_factors::<R, WITH_PDF>(&a, sum)
+    }
+
+    /// `N_p` for p = 0..3 at the relative azimuth `phi` of the path entering at gamma_o and
+    /// refracting to gamma_t: the trimmed logistic about the exit angle Phi(p) for R, TT and
+    /// TRT ([`TrimmedLogistic::densities`]), `1 / (2 pi)` for the residual.
+    #[inline(always)]
+    fn distributions(&self, phi: R, gamma_o: R, gamma_t: R) -> [R; LOBES_WITH_RESIDUAL] {
         let dphi: [R; 3] = array_from_fn(
             #[inline(always)]
-            |p| wrap_angle(at.phi - exit_angle(R::c(p as f64), path.gamma_o, path.gamma_t)),
+            |p| wrap_angle(phi - exit_angle(R::c(p as f64), gamma_o, gamma_t)),
         );
         // N_p of R, TT and TRT about their exit angles, as one shader function.
         const DISTRIBUTIONS: ShaderFunction = crate::shader_function!(
@@ -505,27 +535,7 @@ impl<R: Real, O> ChiangHair<R, O> {
             #[inline(always)]
             |dphi| self.logistic().densities(dphi),
         );
-        let n = [n0, n1, n2, INV_TWO_PI.get()];
-        let wn = if WITH_PDF {
-            let w = lobe_weights(&a);
-            array_from_fn(
-                #[inline(always)]
-                |p| w[p] * n[p],
-            )
-        } else {
-            [R::c(0.0); LOBES_WITH_RESIDUAL]
-        };
-        let an = array_from_fn(
-            #[inline(always)]
-            |p| {
-                map_array(
-                    a[p],
-                    #[inline(always)]
-                    |x| x * n[p],
-                )
-            },
-        );
-        (an, wn)
+        [n0, n1, n2, INV_TWO_PI.get()]
     }
 
     /// The lobe factors for a query and an azimuthal part computed by `azimuthal` from
@@ -617,6 +627,35 @@ fn lobe_weights<R: Real>(a: &[[R; 3]; LOBES_WITH_RESIDUAL]) -> [R; LOBES_WITH_RE
         #[inline(always)]
         |x| x / total,
     )
+}
+
+/// `(A_p N_p per channel, w_p N_p)` from the attenuations `a` and the distributions `n`; the
+/// lobe-choice probabilities `w_p` ([`lobe_weights`]) only `WITH_PDF`.
+#[inline(always)]
+fn azimuthal_factors<R: Real, const WITH_PDF: bool>(
+    a: &[[R; 3]; LOBES_WITH_RESIDUAL],
+    n: [R; LOBES_WITH_RESIDUAL],
+) -> AzimuthalFactors<R> {
+    let wn = if WITH_PDF {
+        let w = lobe_weights(a);
+        array_from_fn(
+            #[inline(always)]
+            |p| w[p] * n[p],
+        )
+    } else {
+        [R::c(0.0); LOBES_WITH_RESIDUAL]
+    };
+    let an = array_from_fn(
+        #[inline(always)]
+        |p| {
+            map_array(
+                a[p],
+                #[inline(always)]
+                |x| x * n[p],
+            )
+        },
+    );
+    (an, wn)
 }
 
 impl<R: Real, O: Offsets<R>> ChiangHair<R, O> {

@@ -10,7 +10,11 @@
 //!   traces to shader code. The integral is taken over gamma = asin(h), where the integrand
 //!   `A_p(sin gamma) D(...) cos(gamma) / 2` is smooth at the fibre's edges (in h it has
 //!   square-root endpoints), with Gauss-Legendre nodes; the weights are renormalised to sum to 1,
-//!   so the rule is exact for constant integrands and energy is conserved exactly.
+//!   so the rule is exact for constant integrands and energy is conserved exactly. The nodes
+//!   come in mirrored pairs h, -h, which share one path through the fibre: `A_p` is even in h
+//!   and the exit angles odd ([`FarFieldRule::mirrored_pairs`]), so a pair costs one Fresnel
+//!   term, one set of transmittances and two sets of logistics (`benches/models.rs`: 44% less
+//!   time for 64 nodes in `f32`, 30% in the batch).
 //! - [`ReferenceFarField`] ([`ReferenceFarField::eval_with_error`]): adaptive, f64, with an error estimate; breakpoints at
 //!   the offsets where phi = Phi(p, h) keep the narrow peaks of low roughness resolved, and
 //!   breakpoints where phi - Phi(p, h) wraps through pi keep the integrand smooth within every
@@ -71,7 +75,8 @@ pub const MAX_FAR_FIELD_NODES: usize = 512;
 
 impl FarFieldRule {
     /// `n` Gauss-Legendre nodes in gamma = asin(h) on [-pi/2, pi/2], weights `w_k cos(gamma_k) / 2`
-    /// renormalised to sum to 1.
+    /// renormalised to sum to 1. The rule is symmetric to the last bit: the nodes gamma_k > 0
+    /// and their mirror images -gamma_k with the same weights, and for odd `n` the node 0.
     ///
     /// # Errors
     /// `n` outside 1..=512.
@@ -83,19 +88,45 @@ impl FarFieldRule {
             |v| (1.0..=MAX_FAR_FIELD_NODES as f64).contains(&v),
         )?;
         let half_pi = core::f64::consts::FRAC_PI_2;
-        let raw: Vec<(f64, f64)> = gauss_legendre(n)
-            .into_iter()
-            .map(|(x, w)| (half_pi * x, half_pi * w * (half_pi * x).cos() * 0.5))
+        let rule = gauss_legendre(n);
+        // gauss_legendre lists the nodes from the largest: the first n / 2 are positive, and
+        // the middle one of an odd rule is 0 up to rounding.
+        let weight = |x: f64, w: f64| half_pi * w * (half_pi * x).cos() * 0.5;
+        let positive: Vec<(f64, f64)> = rule[..n / 2]
+            .iter()
+            .map(|&(x, w)| ((half_pi * x).sin(), weight(x, w)))
             .collect();
-        let total: f64 = raw.iter().map(|&(_, w)| w).sum();
+        let centre = (n % 2 == 1).then(|| (0.0, weight(0.0, rule[n / 2].1)));
+        let total =
+            2.0 * positive.iter().map(|&(_, w)| w).sum::<f64>() + centre.map_or(0.0, |(_, w)| w);
+        let mirrored = positive.iter().rev().map(|&(h, w)| (-h, w));
         Ok(FarFieldRule {
-            nodes: raw.into_iter().map(|(g, w)| (g.sin(), w / total)).collect(),
+            nodes: positive
+                .iter()
+                .copied()
+                .chain(centre)
+                .chain(mirrored)
+                .map(|(h, w)| (h, w / total))
+                .collect(),
         })
     }
 
-    /// The (h_k, P_k) pairs.
+    /// The (h_k, P_k) pairs, from h = 1 down to h = -1.
     pub fn nodes(&self) -> &[(f64, f64)] {
         &self.nodes
+    }
+
+    /// The nodes h_k >= 0 with their weights P_k, each standing for itself and its mirror
+    /// image -h_k; the node 0 of an odd rule with half its weight (so that the weights of
+    /// both members of every pair sum to 1).
+    pub fn mirrored_pairs(&self) -> Vec<(f64, f64)> {
+        let n = self.nodes.len();
+        let centre = self.nodes[n / 2];
+        self.nodes[..n / 2]
+            .iter()
+            .copied()
+            .chain((n % 2 == 1).then_some((centre.0, 0.5 * centre.1)))
+            .collect()
     }
 }
 
@@ -103,19 +134,24 @@ impl FarFieldRule {
 /// precision, over which the azimuthal factors are averaged ([`Offsets`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct OffsetNodes<R> {
-    /// [h_k, P_k], the weights summing to 1, as the loop over the nodes reads them.
+    /// [h_k, P_k], the weights summing to 1, from which sampling chooses a node.
     nodes: Vec<[R; 2]>,
+    /// [h_k, P_k] of [`FarFieldRule::mirrored_pairs`], as the loop of evaluation reads them:
+    /// one path through the fibre for h_k and -h_k ([`ChiangHair::azimuthal_mirrored_at`]).
+    pairs: Vec<[R; 2]>,
+}
+
+/// `[h, P]` of each `(h, P)` in `R`.
+fn rounded<R: Real>(nodes: &[(f64, f64)]) -> Vec<[R; 2]> {
+    nodes.iter().map(|&(h, p)| [R::c(h), R::c(p)]).collect()
 }
 
 impl<R: Real> OffsetNodes<R> {
     /// The nodes of `rule` rounded to `R`.
     pub fn new(rule: &FarFieldRule) -> Self {
         OffsetNodes {
-            nodes: rule
-                .nodes
-                .iter()
-                .map(|&(h, p)| [R::c(h), R::c(p)])
-                .collect(),
+            nodes: rounded(&rule.nodes),
+            pairs: rounded(&rule.mirrored_pairs()),
         }
     }
 }
@@ -133,19 +169,21 @@ const NODE_SUMS: [(&str, Shape); 8] = [
     ("w_residual", Shape::Scalar),
 ];
 
-/// The loop of the fixed-node far field over its nodes (h_k, P_k): `N_p A_p += P_k (N_p A_p)(h_k)`.
+/// The loop of the fixed-node far field over its mirrored pairs of nodes (h_k, P_k):
+/// `N_p A_p += P_k A_p(h_k) (N_p(h_k) + N_p(-h_k))`.
 const NODES: ShaderLoop = ShaderLoop {
-    name: "far_field_node",
-    array: "FAR_FIELD_OFFSETS",
+    name: "far_field_node_pair",
+    array: "FAR_FIELD_OFFSET_PAIRS",
     fields: &["h", "weight"],
     state: NODE_SUMS.split_at(4).0,
     source: "hairmath::bcsdf::far_field::OffsetNodes::azimuthal",
-    equation: "Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature",
+    equation: "Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature, \
+        the nodes h and -h sharing A_p",
 };
 
 /// [`NODES`] also accumulating the lobe-choice weights `w_p N_p` of sampling.
 const NODES_WITH_PDF: ShaderLoop = ShaderLoop {
-    name: "far_field_node_with_pdf",
+    name: "far_field_node_pair_with_pdf",
     state: &NODE_SUMS,
     ..NODES
 };
@@ -167,12 +205,10 @@ fn per_lobe<R: Real>(sums: &[R]) -> [[R; 3]; LOBES_WITH_RESIDUAL] {
 impl OffsetsIn for OffsetNodes<f64> {
     type In<S: Real> = OffsetNodes<S>;
     fn cast<S: Real>(&self) -> OffsetNodes<S> {
+        let cast = |nodes: &[[f64; 2]]| nodes.iter().map(|&[h, p]| [S::c(h), S::c(p)]).collect();
         OffsetNodes {
-            nodes: self
-                .nodes
-                .iter()
-                .map(|&[h, p]| [S::c(h), S::c(p)])
-                .collect(),
+            nodes: cast(&self.nodes),
+            pairs: cast(&self.pairs),
         }
     }
 }
@@ -180,8 +216,9 @@ impl OffsetsIn for OffsetNodes<f64> {
 impl<R: Real> Offsets<R> for OffsetNodes<R> {
     const NEAR_FIELD: bool = false;
 
-    /// `(N_p A_p per channel, w_p N_p)` averaged over the nodes: `N_p` here includes the
-    /// attenuation, `1/2 int A_p(h) D(phi - Phi(p, h)) dh`; `at.h` is ignored.
+    /// `(N_p A_p per channel, w_p N_p)` averaged over the nodes, a mirrored pair of them at a
+    /// time: `N_p` here includes the attenuation, `1/2 int A_p(h) D(phi - Phi(p, h)) dh`;
+    /// `at.h` is ignored.
     #[inline(always)]
     fn azimuthal<O, const WITH_PDF: bool>(
         &self,
@@ -191,11 +228,11 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
         if WITH_PDF {
             let sums = R::fold(
                 &NODES_WITH_PDF,
-                &self.nodes,
+                &self.pairs,
                 [R::c(0.0); 16],
                 #[inline(always)]
                 |mut s, [h, w]| {
-                    let (a, wn) = hair.azimuthal_at::<WITH_PDF>(Outgoing { h, ..at });
+                    let (a, wn) = hair.azimuthal_mirrored_at::<WITH_PDF>(Outgoing { h, ..at });
                     add_weighted(&mut s[..12], w, a.as_flattened());
                     add_weighted(&mut s[12..], w, &wn);
                     s
@@ -211,11 +248,11 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
         } else {
             let sums = R::fold(
                 &NODES,
-                &self.nodes,
+                &self.pairs,
                 [R::c(0.0); 12],
                 #[inline(always)]
                 |mut s, [h, w]| {
-                    let (a, _) = hair.azimuthal_at::<WITH_PDF>(Outgoing { h, ..at });
+                    let (a, _) = hair.azimuthal_mirrored_at::<WITH_PDF>(Outgoing { h, ..at });
                     add_weighted(&mut s, w, a.as_flattened());
                     s
                 },

@@ -46,16 +46,17 @@ fn the_near_field_calls_one_lobe_function_for_its_four_lobes() {
 
 #[test]
 fn the_far_field_loops_over_its_nodes() {
-    for nodes in [4, 16] {
+    for nodes in [4, 5, 16] {
         let rule = FarFieldRule::gauss_legendre(nodes).unwrap();
         let model = ChiangFarField::with_rule(&HairParams::default(), &rule);
         let graph = trace_eval(&model);
         assert_eq!(graph.arrays().len(), 1);
         let array = &graph.arrays()[0];
-        assert_eq!(array.info.array, "FAR_FIELD_OFFSETS");
-        assert_eq!(array.elements.len(), nodes);
+        // One element per mirrored pair (h, -h), and the middle node of an odd rule.
+        assert_eq!(array.info.array, "FAR_FIELD_OFFSET_PAIRS");
+        assert_eq!(array.elements.len(), nodes.div_ceil(2));
         let expected: Vec<Vec<f32>> = rule
-            .nodes()
+            .mirrored_pairs()
             .iter()
             .map(|&(h, w)| vec![h as f32, w as f32])
             .collect();
@@ -68,7 +69,7 @@ fn the_far_field_loops_over_its_nodes() {
             .collect();
         assert_eq!(loops.len(), 1, "one loop at the top level");
         let body = &graph.functions()[loops[0].function as usize];
-        assert_eq!(body.name, "far_field_node");
+        assert_eq!(body.name, "far_field_node_pair");
         // The loop body is traced once whatever the node count: its size does not grow.
         assert!(body.body.nodes.len() < graph.nodes().len() / 2);
     }
