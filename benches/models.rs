@@ -1,7 +1,8 @@
 //! Throughput of every real-time model of the registry (`hairmath::registry::MODELS` entries
 //! with an approximation) beside the reference it approximates, Chiang et al. 2016's far field
 //! with 64 nodes in h (the comparison's reference) and with 8: `f32` scalar and the SIMD batch
-//! (`hairmath::real::BatchReal` lanes).
+//! (`hairmath::bcsdf::HostBatch`, the lanes of the host's widest instruction set, for every
+//! model and the far field alike).
 //!
 //! Each model is built from its mapped inputs for dark brown hair (eumelanin 3) at beta_m =
 //! beta_n = 0.3, alpha = 2 degrees, eta = 1.55 (the README's table). Every benchmark processes
@@ -16,7 +17,7 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
-use hairmath::bcsdf::{BatchEval, Bcsdf, ChiangFarField, FarFieldRule, Model, Query};
+use hairmath::bcsdf::{BatchEval, Bcsdf, ChiangFarField, FarFieldRule, HostBatch, Model, Query};
 use hairmath::diagnostics::DirectionPairs;
 use hairmath::fit::ComparisonSettings;
 use hairmath::geometry::V3;
@@ -97,12 +98,7 @@ fn models(c: &mut Criterion) {
         );
         let name = format!("chiang-far-{nodes}");
         scalar(c, &name, &far.instantiate::<f32>(), &inputs);
-        batch(
-            c,
-            &name,
-            &far.instantiate::<hairmath::real::BatchReal>(),
-            &inputs,
-        );
+        batch(c, &name, &HostBatch::new(&far), &inputs);
     }
     for entry in MODELS {
         let Some(approximation) = entry.approximation else {
