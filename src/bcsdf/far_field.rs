@@ -13,8 +13,8 @@
 //!   so the rule is exact for constant integrands and energy is conserved exactly. The nodes
 //!   come in mirrored pairs h, -h, which share one path through the fibre: `A_p` is even in h
 //!   and the exit angles odd ([`FarFieldRule::mirrored_pairs`]), so a pair costs one Fresnel
-//!   term, one set of transmittances and two sets of logistics (`benches/models.rs`: 44% less
-//!   time for 64 nodes in `f32`, 30% in the batch).
+//!   term, one set of transmittances and two sets of logistics (`benches/models.rs` against
+//!   the commit before: 44% less time for 64 nodes in `f32`, 30% in `wide`'s lanes).
 //! - [`ReferenceFarField`] ([`ReferenceFarField::eval_with_error`]): adaptive, f64, with an error estimate; breakpoints at
 //!   the offsets where phi = Phi(p, h) keep the narrow peaks of low roughness resolved, and
 //!   breakpoints where phi - Phi(p, h) wraps through pi keep the integrand smooth within every
@@ -117,8 +117,8 @@ impl FarFieldRule {
     }
 
     /// The nodes h_k >= 0 with their weights P_k, each standing for itself and its mirror
-    /// image -h_k; the node 0 of an odd rule with half its weight (so that the weights of
-    /// both members of every pair sum to 1).
+    /// image -h_k; the node 0 of an odd rule with half its weight. Counted twice, once per
+    /// member of the pair, the weights sum to 1.
     pub fn mirrored_pairs(&self) -> Vec<(f64, f64)> {
         let n = self.nodes.len();
         let centre = self.nodes[n / 2];
@@ -142,16 +142,16 @@ pub struct OffsetNodes<R> {
 }
 
 /// `[h, P]` of each `(h, P)` in `R`.
-fn rounded<R: Real>(nodes: &[(f64, f64)]) -> Vec<[R; 2]> {
-    nodes.iter().map(|&(h, p)| [R::c(h), R::c(p)]).collect()
+fn rounded<R: Real>(nodes: impl Iterator<Item = (f64, f64)>) -> Vec<[R; 2]> {
+    nodes.map(|(h, p)| [R::c(h), R::c(p)]).collect()
 }
 
 impl<R: Real> OffsetNodes<R> {
     /// The nodes of `rule` rounded to `R`.
     pub fn new(rule: &FarFieldRule) -> Self {
         OffsetNodes {
-            nodes: rounded(&rule.nodes),
-            pairs: rounded(&rule.mirrored_pairs()),
+            nodes: rounded(rule.nodes.iter().copied()),
+            pairs: rounded(rule.mirrored_pairs().into_iter()),
         }
     }
 }
@@ -205,7 +205,7 @@ fn per_lobe<R: Real>(sums: &[R]) -> [[R; 3]; LOBES_WITH_RESIDUAL] {
 impl OffsetsIn for OffsetNodes<f64> {
     type In<S: Real> = OffsetNodes<S>;
     fn cast<S: Real>(&self) -> OffsetNodes<S> {
-        let cast = |nodes: &[[f64; 2]]| nodes.iter().map(|&[h, p]| [S::c(h), S::c(p)]).collect();
+        let cast = |nodes: &[[f64; 2]]| rounded(nodes.iter().map(|&[h, p]| (h, p)));
         OffsetNodes {
             nodes: cast(&self.nodes),
             pairs: cast(&self.pairs),
