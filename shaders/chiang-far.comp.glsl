@@ -150,35 +150,32 @@ TrimmedLogistics trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, 
 }
 
 // hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature, the nodes h and -h sharing A_p
-FarFieldNodePair far_field_node_pair(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 residual_in, float h, float weight, float sin_theta_o, float inv_eta, float cos_theta_o, float eta, vec3 sigma_a, float phi, float logistic_inv_scale, float logistic_norm) {
-    float _e26 = (sin_theta_o * inv_eta);
-    float cos_theta_t = sqrt(max((1.0 - (_e26 * _e26)), 0.0));
-    float inv_cos_theta_t = (1.0 / cos_theta_t);
-    FibrePath _e34 = fibre_path(h, cos_theta_o, inv_eta, inv_cos_theta_t, eta);
-    Attenuations _e43 = attenuations(_e34.fresnel, exp((-(sigma_a.x) * _e34.segment_length)));
-    Attenuations _e52 = attenuations(_e34.fresnel, exp((-(sigma_a.y) * _e34.segment_length)));
-    Attenuations _e61 = attenuations(_e34.fresnel, exp((-(sigma_a.z) * _e34.segment_length)));
-    float _e66 = exit_angle(0.0, _e34.gamma_o, _e34.gamma_t);
-    float _e67 = (phi - _e66);
-    float _e76 = exit_angle(1.0, _e34.gamma_o, _e34.gamma_t);
-    float _e77 = (phi - _e76);
-    float _e84 = exit_angle(2.0, _e34.gamma_o, _e34.gamma_t);
-    float _e85 = (phi - _e84);
-    TrimmedLogistics _e91 = trimmed_logistics((_e67 - (TWO_PI * floor(((_e67 + PI) * INV_TWO_PI)))), (_e77 - (TWO_PI * floor(((_e77 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    float _e95 = -(_e34.gamma_o);
-    float _e96 = -(_e34.gamma_t);
-    float _e97 = exit_angle(0.0, _e95, _e96);
-    float _e98 = (phi - _e97);
-    float _e104 = exit_angle(1.0, _e95, _e96);
-    float _e105 = (phi - _e104);
-    float _e111 = exit_angle(2.0, _e95, _e96);
-    float _e112 = (phi - _e111);
-    TrimmedLogistics _e118 = trimmed_logistics((_e98 - (TWO_PI * floor(((_e98 + PI) * INV_TWO_PI)))), (_e105 - (TWO_PI * floor(((_e105 + PI) * INV_TWO_PI)))), (_e112 - (TWO_PI * floor(((_e112 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    float _e122 = (_e91.r + _e118.r);
-    float _e123 = (_e91.tt + _e118.tt);
-    float _e124 = (_e91.trt + _e118.trt);
-    float _e125 = (INV_TWO_PI + INV_TWO_PI);
-    return FarFieldNodePair((r_in + (weight * (vec3(_e43.r, _e52.r, _e61.r) * _e122))), (tt_in + (weight * (vec3(_e43.tt, _e52.tt, _e61.tt) * _e123))), (trt_in + (weight * (vec3(_e43.trt, _e52.trt, _e61.trt) * _e124))), (residual_in + (weight * (vec3(_e43.residual, _e52.residual, _e61.residual) * _e125))));
+FarFieldNodePair far_field_node_pair(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 residual_in, float h, float weight, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float eta, vec3 sigma_a, float phi, float logistic_inv_scale, float logistic_norm) {
+    FibrePath _e26 = fibre_path(h, cos_theta_o, inv_eta, inv_cos_theta_t, eta);
+    Attenuations _e35 = attenuations(_e26.fresnel, exp((-(sigma_a.x) * _e26.segment_length)));
+    Attenuations _e44 = attenuations(_e26.fresnel, exp((-(sigma_a.y) * _e26.segment_length)));
+    Attenuations _e53 = attenuations(_e26.fresnel, exp((-(sigma_a.z) * _e26.segment_length)));
+    float _e59 = exit_angle(0.0, _e26.gamma_o, _e26.gamma_t);
+    float _e60 = (phi - _e59);
+    float _e70 = exit_angle(1.0, _e26.gamma_o, _e26.gamma_t);
+    float _e71 = (phi - _e70);
+    float _e78 = exit_angle(2.0, _e26.gamma_o, _e26.gamma_t);
+    float _e79 = (phi - _e78);
+    TrimmedLogistics _e85 = trimmed_logistics((_e60 - (TWO_PI * floor(((_e60 + PI) * INV_TWO_PI)))), (_e71 - (TWO_PI * floor(((_e71 + PI) * INV_TWO_PI)))), (_e79 - (TWO_PI * floor(((_e79 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
+    float _e89 = -(_e26.gamma_o);
+    float _e90 = -(_e26.gamma_t);
+    float _e91 = exit_angle(0.0, _e89, _e90);
+    float _e92 = (phi - _e91);
+    float _e98 = exit_angle(1.0, _e89, _e90);
+    float _e99 = (phi - _e98);
+    float _e105 = exit_angle(2.0, _e89, _e90);
+    float _e106 = (phi - _e105);
+    TrimmedLogistics _e112 = trimmed_logistics((_e92 - (TWO_PI * floor(((_e92 + PI) * INV_TWO_PI)))), (_e99 - (TWO_PI * floor(((_e99 + PI) * INV_TWO_PI)))), (_e106 - (TWO_PI * floor(((_e106 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
+    float _e116 = (_e85.r + _e112.r);
+    float _e117 = (_e85.tt + _e112.tt);
+    float _e118 = (_e85.trt + _e112.trt);
+    float _e119 = (INV_TWO_PI + INV_TWO_PI);
+    return FarFieldNodePair((r_in + (weight * (vec3(_e35.r, _e44.r, _e53.r) * _e116))), (tt_in + (weight * (vec3(_e35.tt, _e44.tt, _e53.tt) * _e117))), (trt_in + (weight * (vec3(_e35.trt, _e44.trt, _e53.trt) * _e118))), (residual_in + (weight * (vec3(_e35.residual, _e44.residual, _e53.residual) * _e119))));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
@@ -205,6 +202,9 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     uint k = 0u;
     FibreAngles _e30 = fibre_angles(wi, wo);
     float phi = -(_e30.phi);
+    float _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
+    float cos_theta_t = sqrt(max((1.0 - (_e37 * _e37)), 0.0));
+    float inv_cos_theta_t = (1.0 / cos_theta_t);
     r = vec3(0.0);
     tt = vec3(0.0);
     trt = vec3(0.0);
@@ -212,36 +212,36 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e64 = k;
-            k = (_e64 + 1u);
+            uint _e71 = k;
+            k = (_e71 + 1u);
         }
         loop_init = false;
-        uint _e47 = k;
-        if ((_e47 < 32u)) {
+        uint _e54 = k;
+        if ((_e54 < 32u)) {
         } else {
             break;
         }
-        uint _e51 = k;
-        vec3 _e53 = r;
-        vec3 _e54 = tt;
-        vec3 _e55 = trt;
-        vec3 _e56 = residual;
-        FarFieldNodePair _e59 = far_field_node_pair(_e53, _e54, _e55, _e56, FAR_FIELD_OFFSET_PAIRS[_e51].h, FAR_FIELD_OFFSET_PAIRS[_e51].weight, _e30.sin_theta_o, uniforms.inv_eta, _e30.cos_theta_o, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
-        r = _e59.r;
-        tt = _e59.tt;
-        trt = _e59.trt;
-        residual = _e59.residual;
+        uint _e58 = k;
+        vec3 _e60 = r;
+        vec3 _e61 = tt;
+        vec3 _e62 = trt;
+        vec3 _e63 = residual;
+        FarFieldNodePair _e66 = far_field_node_pair(_e60, _e61, _e62, _e63, FAR_FIELD_OFFSET_PAIRS[_e58].h, FAR_FIELD_OFFSET_PAIRS[_e58].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        r = _e66.r;
+        tt = _e66.tt;
+        trt = _e66.trt;
+        residual = _e66.residual;
     }
-    vec3 _e67 = r;
-    vec3 _e68 = tt;
-    vec3 _e69 = trt;
-    vec3 _e70 = residual;
-    float _e83 = -(uniforms.sin_2_alpha);
-    float _e91 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e83)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) - (_e30.sin_theta_o * _e83))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
-    float _e99 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
-    float _e107 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    float _e108 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    return ((((vec3(0.0) + (_e91 * _e67)) + (_e99 * _e68)) + (_e107 * _e69)) + (_e108 * _e70));
+    vec3 _e74 = r;
+    vec3 _e75 = tt;
+    vec3 _e76 = trt;
+    vec3 _e77 = residual;
+    float _e90 = -(uniforms.sin_2_alpha);
+    float _e98 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e90)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) - (_e30.sin_theta_o * _e90))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    float _e106 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    float _e114 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    float _e115 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    return ((((vec3(0.0) + (_e98 * _e74)) + (_e106 * _e75)) + (_e114 * _e76)) + (_e115 * _e77));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -149,35 +149,32 @@ fn trimmed_logistics(dphi_r: f32, dphi_tt: f32, dphi_trt: f32, logistic_inv_scal
 }
 
 // hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature, the nodes h and -h sharing A_p
-fn far_field_node_pair(r_in: vec3<f32>, tt_in: vec3<f32>, trt_in: vec3<f32>, residual_in: vec3<f32>, h: f32, weight: f32, sin_theta_o: f32, inv_eta: f32, cos_theta_o: f32, eta: f32, sigma_a: vec3<f32>, phi: f32, logistic_inv_scale: f32, logistic_norm: f32) -> FarFieldNodePair {
-    let _e26 = (sin_theta_o * inv_eta);
-    let cos_theta_t = sqrt(max((1f - (_e26 * _e26)), 0f));
-    let inv_cos_theta_t = (1f / cos_theta_t);
-    let _e34 = fibre_path(h, cos_theta_o, inv_eta, inv_cos_theta_t, eta);
-    let _e43 = attenuations(_e34.fresnel, exp((-(sigma_a.x) * _e34.segment_length)));
-    let _e52 = attenuations(_e34.fresnel, exp((-(sigma_a.y) * _e34.segment_length)));
-    let _e61 = attenuations(_e34.fresnel, exp((-(sigma_a.z) * _e34.segment_length)));
-    let _e66 = exit_angle(0f, _e34.gamma_o, _e34.gamma_t);
-    let _e67 = (phi - _e66);
-    let _e76 = exit_angle(1f, _e34.gamma_o, _e34.gamma_t);
-    let _e77 = (phi - _e76);
-    let _e84 = exit_angle(2f, _e34.gamma_o, _e34.gamma_t);
-    let _e85 = (phi - _e84);
-    let _e91 = trimmed_logistics((_e67 - (TWO_PI * floor(((_e67 + PI) * INV_TWO_PI)))), (_e77 - (TWO_PI * floor(((_e77 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    let _e95 = -(_e34.gamma_o);
-    let _e96 = -(_e34.gamma_t);
-    let _e97 = exit_angle(0f, _e95, _e96);
-    let _e98 = (phi - _e97);
-    let _e104 = exit_angle(1f, _e95, _e96);
-    let _e105 = (phi - _e104);
-    let _e111 = exit_angle(2f, _e95, _e96);
-    let _e112 = (phi - _e111);
-    let _e118 = trimmed_logistics((_e98 - (TWO_PI * floor(((_e98 + PI) * INV_TWO_PI)))), (_e105 - (TWO_PI * floor(((_e105 + PI) * INV_TWO_PI)))), (_e112 - (TWO_PI * floor(((_e112 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    let _e122 = (_e91.r + _e118.r);
-    let _e123 = (_e91.tt + _e118.tt);
-    let _e124 = (_e91.trt + _e118.trt);
-    let _e125 = (INV_TWO_PI + INV_TWO_PI);
-    return FarFieldNodePair((r_in + (weight * (vec3<f32>(_e43.r, _e52.r, _e61.r) * _e122))), (tt_in + (weight * (vec3<f32>(_e43.tt, _e52.tt, _e61.tt) * _e123))), (trt_in + (weight * (vec3<f32>(_e43.trt, _e52.trt, _e61.trt) * _e124))), (residual_in + (weight * (vec3<f32>(_e43.residual, _e52.residual, _e61.residual) * _e125))));
+fn far_field_node_pair(r_in: vec3<f32>, tt_in: vec3<f32>, trt_in: vec3<f32>, residual_in: vec3<f32>, h: f32, weight: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, eta: f32, sigma_a: vec3<f32>, phi: f32, logistic_inv_scale: f32, logistic_norm: f32) -> FarFieldNodePair {
+    let _e26 = fibre_path(h, cos_theta_o, inv_eta, inv_cos_theta_t, eta);
+    let _e35 = attenuations(_e26.fresnel, exp((-(sigma_a.x) * _e26.segment_length)));
+    let _e44 = attenuations(_e26.fresnel, exp((-(sigma_a.y) * _e26.segment_length)));
+    let _e53 = attenuations(_e26.fresnel, exp((-(sigma_a.z) * _e26.segment_length)));
+    let _e59 = exit_angle(0f, _e26.gamma_o, _e26.gamma_t);
+    let _e60 = (phi - _e59);
+    let _e70 = exit_angle(1f, _e26.gamma_o, _e26.gamma_t);
+    let _e71 = (phi - _e70);
+    let _e78 = exit_angle(2f, _e26.gamma_o, _e26.gamma_t);
+    let _e79 = (phi - _e78);
+    let _e85 = trimmed_logistics((_e60 - (TWO_PI * floor(((_e60 + PI) * INV_TWO_PI)))), (_e71 - (TWO_PI * floor(((_e71 + PI) * INV_TWO_PI)))), (_e79 - (TWO_PI * floor(((_e79 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
+    let _e89 = -(_e26.gamma_o);
+    let _e90 = -(_e26.gamma_t);
+    let _e91 = exit_angle(0f, _e89, _e90);
+    let _e92 = (phi - _e91);
+    let _e98 = exit_angle(1f, _e89, _e90);
+    let _e99 = (phi - _e98);
+    let _e105 = exit_angle(2f, _e89, _e90);
+    let _e106 = (phi - _e105);
+    let _e112 = trimmed_logistics((_e92 - (TWO_PI * floor(((_e92 + PI) * INV_TWO_PI)))), (_e99 - (TWO_PI * floor(((_e99 + PI) * INV_TWO_PI)))), (_e106 - (TWO_PI * floor(((_e106 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
+    let _e116 = (_e85.r + _e112.r);
+    let _e117 = (_e85.tt + _e112.tt);
+    let _e118 = (_e85.trt + _e112.trt);
+    let _e119 = (INV_TWO_PI + INV_TWO_PI);
+    return FarFieldNodePair((r_in + (weight * (vec3<f32>(_e35.r, _e44.r, _e53.r) * _e116))), (tt_in + (weight * (vec3<f32>(_e35.tt, _e44.tt, _e53.tt) * _e117))), (trt_in + (weight * (vec3<f32>(_e35.trt, _e44.trt, _e53.trt) * _e118))), (residual_in + (weight * (vec3<f32>(_e35.residual, _e44.residual, _e53.residual) * _e119))));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
@@ -205,41 +202,44 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
 
     let _e30 = fibre_angles(wi, wo);
     let phi = -(_e30.phi);
+    let _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
+    let cos_theta_t = sqrt(max((1f - (_e37 * _e37)), 0f));
+    let inv_cos_theta_t = (1f / cos_theta_t);
     r = vec3(0f);
     tt = vec3(0f);
     trt = vec3(0f);
     residual = vec3(0f);
     loop {
-        let _e47 = k;
-        if (_e47 < 32u) {
+        let _e54 = k;
+        if (_e54 < 32u) {
         } else {
             break;
         }
-        let _e51 = k;
-        let _e53 = r;
-        let _e54 = tt;
-        let _e55 = trt;
-        let _e56 = residual;
-        let _e59 = far_field_node_pair(_e53, _e54, _e55, _e56, FAR_FIELD_OFFSET_PAIRS[_e51].h, FAR_FIELD_OFFSET_PAIRS[_e51].weight, _e30.sin_theta_o, uniforms.inv_eta, _e30.cos_theta_o, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
-        r = _e59.r;
-        tt = _e59.tt;
-        trt = _e59.trt;
-        residual = _e59.residual;
+        let _e58 = k;
+        let _e60 = r;
+        let _e61 = tt;
+        let _e62 = trt;
+        let _e63 = residual;
+        let _e66 = far_field_node_pair(_e60, _e61, _e62, _e63, FAR_FIELD_OFFSET_PAIRS[_e58].h, FAR_FIELD_OFFSET_PAIRS[_e58].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        r = _e66.r;
+        tt = _e66.tt;
+        trt = _e66.trt;
+        residual = _e66.residual;
         continuing {
-            let _e64 = k;
-            k = (_e64 + 1u);
+            let _e71 = k;
+            k = (_e71 + 1u);
         }
     }
-    let _e67 = r;
-    let _e68 = tt;
-    let _e69 = trt;
-    let _e70 = residual;
-    let _e83 = -(uniforms.sin_2_alpha);
-    let _e91 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e83)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) - (_e30.sin_theta_o * _e83))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
-    let _e99 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
-    let _e107 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    let _e108 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    return ((((vec3(0f) + (_e91 * _e67)) + (_e99 * _e68)) + (_e107 * _e69)) + (_e108 * _e70));
+    let _e74 = r;
+    let _e75 = tt;
+    let _e76 = trt;
+    let _e77 = residual;
+    let _e90 = -(uniforms.sin_2_alpha);
+    let _e98 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e90)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) - (_e30.sin_theta_o * _e90))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    let _e106 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    let _e114 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    let _e115 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    return ((((vec3(0f) + (_e98 * _e74)) + (_e106 * _e75)) + (_e114 * _e76)) + (_e115 * _e77));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

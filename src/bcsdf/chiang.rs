@@ -431,19 +431,25 @@ impl<R: Real, O> ChiangHair<R, O> {
         (sin_o * c + cos_o * s, (cos_o * c - sin_o * s).abs())
     }
 
-    /// The path through the fibre for wo's inclination and offset `h` (clamped to [-1, 1]),
+    /// The refraction into the fibre of wo's ray, inclined at theta_o (sine and cosine): what
+    /// the paths at every offset share.
+    #[inline(always)]
+    pub(crate) fn refraction(&self, sin_o: R, cos_o: R) -> Refraction<R> {
+        let u = &self.uniforms;
+        Refraction::new(sin_o, cos_o, u.eta, u.inv_eta)
+    }
+
+    /// The path through the fibre for wo's refraction and offset `h` (clamped to [-1, 1]),
     /// and `A_p` per lobe and channel.
     #[inline(always)]
     fn attenuations_at(
         &self,
-        sin_o: R,
-        cos_o: R,
+        refraction: &Refraction<R>,
         h: R,
     ) -> (FibrePath<R>, [[R; 3]; LOBES_WITH_RESIDUAL]) {
-        let u = &self.uniforms;
-        let path = Refraction::new(sin_o, cos_o, u.eta, u.inv_eta).path(h, PathLength::Chord);
+        let path = refraction.path(h, PathLength::Chord);
         let per_channel = map_array(
-            u.sigma_a,
+            self.uniforms.sigma_a,
             #[inline(always)]
             |sa| path.attenuations(sa),
         );
@@ -488,7 +494,7 @@ impl<R: Real, O> ChiangHair<R, O> {
         &self,
         at: Outgoing<R>,
     ) -> AzimuthalFactors<R> {
-        let (path, a) = self.attenuations_at(at.sin_o, at.cos_o, at.h);
+        let (path, a) = self.attenuations_at(&self.refraction(at.sin_o, at.cos_o), at.h);
         let n = self.distributions(at.phi, path.gamma_o, path.gamma_t);
         azimuthal_factors::<R, WITH_PDF>(&a, n)
     }
@@ -498,13 +504,15 @@ impl<R: Real, O> ChiangHair<R, O> {
     /// symmetric nodes. The path's segment length and entry Fresnel term depend on `h^2`
     /// only, so `A_p` is even in h; gamma_o = asin h and gamma_t are odd, so the exit angles
     /// at `-h` are those of the negated angles (Marschner et al. 2003, eq. 3). One path for
-    /// two offsets.
+    /// two offsets. `refraction` is that of wo's ray ([`ChiangHair::refraction`]), which the
+    /// far field computes once for all its nodes.
     #[inline(always)]
     pub(crate) fn azimuthal_mirrored_at<const WITH_PDF: bool>(
         &self,
+        refraction: &Refraction<R>,
         at: Outgoing<R>,
     ) -> AzimuthalFactors<R> {
-        let (path, a) = self.attenuations_at(at.sin_o, at.cos_o, at.h);
+        let (path, a) = self.attenuations_at(refraction, at.h);
         let n = self.distributions(at.phi, path.gamma_o, path.gamma_t);
         let mirrored = self.distributions(at.phi, -path.gamma_o, -path.gamma_t);
         let sum = array_from_fn(
@@ -560,7 +568,7 @@ impl<R: Real, O> ChiangHair<R, O> {
     pub(crate) fn sample_direction(&self, wo: V3<R>, h: R, u: &RandomNumbers<R>) -> V3<R> {
         let one = R::c(1.0);
         let (sin_o, cos_o) = local_sin_cos_theta(wo);
-        let (path, a) = self.attenuations_at(sin_o, cos_o, h);
+        let (path, a) = self.attenuations_at(&self.refraction(sin_o, cos_o), h);
         let w = lobe_weights(&a);
 
         // Choose p: the first lobe whose cumulative weight exceeds uc; remap uc into it.

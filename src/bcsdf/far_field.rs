@@ -225,6 +225,8 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
         hair: &ChiangHair<R, O>,
         at: Outgoing<R>,
     ) -> AzimuthalFactors<R> {
+        // The same for every node: outside the loop, also in shader code.
+        let refraction = hair.refraction(at.sin_o, at.cos_o);
         if WITH_PDF {
             let sums = R::fold(
                 &NODES_WITH_PDF,
@@ -232,7 +234,8 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
                 [R::c(0.0); 16],
                 #[inline(always)]
                 |mut s, [h, w]| {
-                    let (a, wn) = hair.azimuthal_mirrored_at::<WITH_PDF>(Outgoing { h, ..at });
+                    let (a, wn) =
+                        hair.azimuthal_mirrored_at::<WITH_PDF>(&refraction, Outgoing { h, ..at });
                     add_weighted(&mut s[..12], w, a.as_flattened());
                     add_weighted(&mut s[12..], w, &wn);
                     s
@@ -252,7 +255,8 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
                 [R::c(0.0); 12],
                 #[inline(always)]
                 |mut s, [h, w]| {
-                    let (a, _) = hair.azimuthal_mirrored_at::<WITH_PDF>(Outgoing { h, ..at });
+                    let (a, _) =
+                        hair.azimuthal_mirrored_at::<WITH_PDF>(&refraction, Outgoing { h, ..at });
                     add_weighted(&mut s, w, a.as_flattened());
                     s
                 },
