@@ -118,7 +118,9 @@ impl FarFieldRule {
 
     /// The nodes h_k >= 0 with their weights P_k, each standing for itself and its mirror
     /// image -h_k; the node 0 of an odd rule with half its weight. Counted twice, once per
-    /// member of the pair, the weights sum to 1.
+    /// member of the pair, the weights sum to 1. The far field evaluates a pair with one path
+    /// through the fibre: `A_p` is even in h and the exit angle `Phi(p, h)` odd (Marschner et
+    /// al. 2003, eq. 3; [`crate::azimuthal::exit_angle`]).
     pub fn mirrored_pairs(&self) -> Vec<(f64, f64)> {
         let n = self.nodes.len();
         let centre = self.nodes[n / 2];
