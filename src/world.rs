@@ -39,7 +39,7 @@
 //! ```
 
 use crate::bcsdf::{
-    check_lengths, check_samples, eval_checked, pdf_checked, BatchError, BatchLanes, Bcsdf,
+    check_lengths, check_samples, eval_samples, pdf_samples, BatchError, BatchLanes, Bcsdf,
     HairSample, Query, RandomNumbers, SampledBcsdf,
 };
 #[cfg(doc)]
@@ -210,7 +210,7 @@ const WORLD_BLOCK: usize = 256;
 /// [`BatchError::Length`] or [`BatchError::TangentLength`] if the slices differ in length,
 /// [`BatchError::Tangent`] for a zero or non-finite tangent, [`BatchError::Direction`] or
 /// [`BatchError::Offset`] naming the first bad sample (directions checked in world space as
-/// [`eval_batch`] checks them); `out` is then untouched.
+/// [`eval_batch`] checks them), with what `out` then holds as there.
 pub fn eval_batch_world<L: BatchLanes, M: Bcsdf<L>>(
     model: &M,
     tangent: &[glam::Vec3],
@@ -221,7 +221,7 @@ pub fn eval_batch_world<L: BatchLanes, M: Bcsdf<L>>(
 ) -> Result<(), BatchError> {
     let samples = WorldSamples { tangent, wi, wo, h };
     world_batch(samples, out, |wi, wo, h, out| {
-        eval_checked(model, wi, wo, h, out)
+        eval_samples::<L, M, false>(model, wi, wo, h, out)
     })
 }
 
@@ -229,7 +229,7 @@ pub fn eval_batch_world<L: BatchLanes, M: Bcsdf<L>>(
 /// density of `wi[k]` given `wo[k]` and `h[k]` for the fibre of direction `tangent[k]`.
 ///
 /// # Errors
-/// As [`eval_batch_world`]; `out` is then untouched.
+/// As [`eval_batch_world`].
 pub fn pdf_batch_world<L: BatchLanes, M: SampledBcsdf<L>>(
     model: &M,
     tangent: &[glam::Vec3],
@@ -240,7 +240,7 @@ pub fn pdf_batch_world<L: BatchLanes, M: SampledBcsdf<L>>(
 ) -> Result<(), BatchError> {
     let samples = WorldSamples { tangent, wi, wo, h };
     world_batch(samples, out, |wi, wo, h, out| {
-        pdf_checked(model, wi, wo, h, out)
+        pdf_samples::<L, M, false>(model, wi, wo, h, out)
     })
 }
 
@@ -253,12 +253,15 @@ pub(crate) struct WorldSamples<'a> {
     pub(crate) h: &'a [f32],
 }
 
-/// Checks every sample of a world-space batch (lengths, tangents, directions in world space,
-/// offsets), then runs `local` on blocks of their local directions with the matching `out`.
+/// Checks the samples of a world-space batch (lengths, tangents, directions in world space,
+/// offsets) block by block, and runs `local` on each block's local directions with the
+/// matching `out` right after its check (while it is in cache). At the first bad sample, the
+/// samples before it are evaluated and its error returned, as in [`eval_batch`]. `local`
+/// evaluates samples checked here, so it does not fail.
 pub(crate) fn world_batch<T>(
     samples: WorldSamples,
     out: &mut [T],
-    local: impl Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [T]),
+    local: impl Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [T]) -> Result<(), BatchError>,
 ) -> Result<(), BatchError> {
     let WorldSamples { tangent, wi, wo, h } = samples;
     check_lengths(wi.len(), wo.len(), h.len(), out.len())?;
@@ -270,55 +273,65 @@ pub(crate) fn world_batch<T>(
     }
     let mut block_wi = [[0.0_f32; 3]; WORLD_BLOCK];
     let mut block_wo = [[0.0_f32; 3]; WORLD_BLOCK];
-    for (start, ((tangent, wi), (wo, h))) in blocks(samples) {
-        let n = tangent.len();
-        if let Some(k) = tangent.iter().position(|t| !usable_tangent(*t)) {
-            let t = tangent[k];
-            let (x, y, z) = (t.x, t.y, t.z);
-            return Err(BatchError::Tangent {
-                index: start + k,
-                x,
-                y,
-                z,
-            });
-        }
-        for k in 0..n {
-            block_wi[k] = wi[k].to_array();
-            block_wo[k] = wo[k].to_array();
-        }
-        check_samples(&block_wi[..n], &block_wo[..n], h).map_err(|e| e.shifted(start))?;
-    }
     let outs = out.chunks_mut(WORLD_BLOCK);
-    for ((_, ((tangent, wi), (wo, h))), out) in blocks(samples).zip(outs) {
-        let n = tangent.len();
-        for k in 0..n {
-            let t = tangent[k] / tangent[k].abs().max_element();
-            let [i, o] = local_directions(t.into(), wi[k].into(), wo[k].into());
+    for ((start, block), out) in blocks(samples).zip(outs) {
+        let valid = check_world_samples(block);
+        let end = valid
+            .as_ref()
+            .map_or_else(|e| e.sample_index().unwrap_or(0), |()| block.h.len());
+        for k in 0..end {
+            let t = block.tangent[k] / block.tangent[k].abs().max_element();
+            let [i, o] = local_directions(t.into(), block.wi[k].into(), block.wo[k].into());
             block_wi[k] = [i.x, i.y, i.z];
             block_wo[k] = [o.x, o.y, o.z];
         }
-        local(&block_wi[..n], &block_wo[..n], h, out);
+        local(
+            &block_wi[..end],
+            &block_wo[..end],
+            &block.h[..end],
+            &mut out[..end],
+        )?;
+        valid.map_err(|e| e.shifted(start))?;
     }
     Ok(())
 }
 
-/// The world-space slices in blocks of [`WORLD_BLOCK`] samples, each with its first index.
-#[allow(clippy::type_complexity)]
-fn blocks<'a>(
-    samples: WorldSamples<'a>,
-) -> impl Iterator<
-    Item = (
-        usize,
-        (
-            (&'a [glam::Vec3], &'a [glam::Vec3]),
-            (&'a [glam::Vec3], &'a [f32]),
-        ),
-    ),
-> {
-    let chunks = |v: &'a [glam::Vec3]| v.chunks(WORLD_BLOCK);
-    let directions = chunks(samples.tangent).zip(chunks(samples.wi));
-    let rest = chunks(samples.wo).zip(samples.h.chunks(WORLD_BLOCK));
-    (0..).step_by(WORLD_BLOCK).zip(directions.zip(rest))
+/// The first bad sample of a block of world-space samples (at most [`WORLD_BLOCK`], lengths
+/// already checked): a zero or non-finite tangent, or a sample [`check_samples`] refuses,
+/// whichever comes first.
+fn check_world_samples(block: WorldSamples) -> Result<(), BatchError> {
+    let WorldSamples { tangent, wi, wo, h } = block;
+    let bad_tangent = tangent.iter().position(|t| !usable_tangent(*t)).map(|k| {
+        let t = tangent[k];
+        let (x, y, z) = (t.x, t.y, t.z);
+        BatchError::Tangent { index: k, x, y, z }
+    });
+    let mut block_wi = [[0.0_f32; 3]; WORLD_BLOCK];
+    let mut block_wo = [[0.0_f32; 3]; WORLD_BLOCK];
+    for k in 0..h.len() {
+        block_wi[k] = wi[k].to_array();
+        block_wo[k] = wo[k].to_array();
+    }
+    let bad_sample = check_samples(&block_wi[..h.len()], &block_wo[..h.len()], h).err();
+    match [bad_tangent, bad_sample]
+        .into_iter()
+        .flatten()
+        .min_by_key(BatchError::sample_index)
+    {
+        Some(error) => Err(error),
+        None => Ok(()),
+    }
+}
+
+/// The world-space samples in blocks of [`WORLD_BLOCK`], each with its first index.
+fn blocks(samples: WorldSamples<'_>) -> impl Iterator<Item = (usize, WorldSamples<'_>)> {
+    let WorldSamples { tangent, wi, wo, h } = samples;
+    let chunks = |v| <[glam::Vec3]>::chunks(v, WORLD_BLOCK);
+    let zipped = chunks(tangent)
+        .zip(chunks(wi))
+        .zip(chunks(wo).zip(h.chunks(WORLD_BLOCK)));
+    let blocks = zipped.map(|((tangent, wi), (wo, h))| WorldSamples { tangent, wi, wo, h });
+    (0..).step_by(WORLD_BLOCK).zip(blocks)
 }
 
 /// Whether a tangent has a frame: finite and non-zero.

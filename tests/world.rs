@@ -302,32 +302,46 @@ fn the_world_pdf_batch_agrees_with_the_f64_pdf() {
     assert!(worst < 1e-3, "world pdf batch: worst {worst:e}");
     let mut bad = tangent.clone();
     bad[2] = Vec3::ZERO;
-    let untouched = vec![7.0_f32; wi.len()];
-    let mut out = untouched.clone();
+    let good = out.clone();
+    let mut out = vec![7.0_f32; wi.len()];
     let error = pdf_batch_world(&lanes, &bad, &wi, &wo, &h, &mut out).unwrap_err();
     assert!(
         matches!(error, BatchError::Tangent { index: 2, .. }),
         "{error}"
     );
-    assert_eq!(out, untouched);
+    // The samples before the bad one are evaluated, none from it on.
+    assert_eq!(out[..2], good[..2]);
+    assert!(out[2..].iter().all(|&p| p == 7.0));
 }
 
+/// A bad sample is named, the samples before it are evaluated and nothing from it on is
+/// written, on the build's lanes and the host's.
 #[test]
-fn the_world_batch_names_the_bad_sample_and_leaves_out_untouched() {
+fn the_world_batch_names_the_bad_sample_and_evaluates_only_those_before_it() {
     let hair = ChiangHair::new(&HairParams::default()).instantiate::<BatchReal>();
     let WorldBatch {
         tangent, wi, wo, h, ..
     } = batch_inputs();
     let untouched = vec![[7.0_f32; 3]; wi.len()];
     let host = HostBatch::new(&ChiangHair::new(&HairParams::default()));
+    let mut good = untouched.clone();
+    eval_batch_world(&hair, &tangent, &wi, &wo, &h, &mut good).unwrap();
+    let mut good_on_host = untouched.clone();
+    host.eval_world(&tangent, &wi, &wo, &h, &mut good_on_host)
+        .unwrap();
     let run = |tangent: &[Vec3], wi: &[Vec3], h: &[f32]| {
         let mut out = untouched.clone();
         let result = eval_batch_world(&hair, tangent, wi, &wo, h, &mut out);
-        assert_eq!(out, untouched);
-        let on_host = host.eval_world(tangent, wi, &wo, h, &mut out);
-        assert_eq!(out, untouched);
+        let mut on_host_out = untouched.clone();
+        let on_host = host.eval_world(tangent, wi, &wo, h, &mut on_host_out);
         assert_eq!(format!("{on_host:?}"), format!("{result:?}"));
-        result.unwrap_err()
+        let error = result.unwrap_err();
+        let first = error.sample_index().unwrap_or(0);
+        assert_eq!(out[..first], good[..first]);
+        assert_eq!(on_host_out[..first], good_on_host[..first]);
+        assert_eq!(out[first..], untouched[first..]);
+        assert_eq!(on_host_out[first..], untouched[first..]);
+        error
     };
     let mut bad = tangent.clone();
     bad[600] = Vec3::ZERO;
@@ -342,18 +356,23 @@ fn the_world_batch_names_the_bad_sample_and_leaves_out_untouched() {
     ));
     let mut bad = wi.clone();
     bad[513] = Vec3::new(0.0, 2.0, 0.0);
-    let error = run(&tangent, &bad, &h);
-    assert!(
-        matches!(
-            error,
-            BatchError::Direction {
-                index: 513,
-                name: "wi",
-                ..
-            }
-        ),
-        "{error}"
-    );
+    // With a bad tangent after it in the same block, the direction is still the first.
+    let mut bad_tangent = tangent.clone();
+    bad_tangent[600] = Vec3::ZERO;
+    for tangent in [&tangent, &bad_tangent] {
+        let error = run(tangent, &bad, &h);
+        assert!(
+            matches!(
+                error,
+                BatchError::Direction {
+                    index: 513,
+                    name: "wi",
+                    ..
+                }
+            ),
+            "{error}"
+        );
+    }
     let mut bad = h.clone();
     bad[300] = f32::NAN;
     assert!(matches!(

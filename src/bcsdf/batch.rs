@@ -110,7 +110,8 @@ pub struct BatchLengthError {
     pub out: usize,
 }
 
-/// Why a batch was refused ([`eval_batch`], [`pdf_batch`]); `out` is then untouched.
+/// Why a batch was refused ([`eval_batch`], [`pdf_batch`]); see [`eval_batch`] for what `out`
+/// then holds.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum BatchError {
@@ -180,6 +181,17 @@ pub enum BatchError {
 }
 
 impl BatchError {
+    /// The index of the sample the error names (a bad direction, offset or tangent); `None`
+    /// for an error of lengths.
+    pub fn sample_index(&self) -> Option<usize> {
+        match *self {
+            BatchError::Direction { index, .. }
+            | BatchError::Offset { index, .. }
+            | BatchError::Tangent { index, .. } => Some(index),
+            _ => None,
+        }
+    }
+
     /// The error of a check of the samples from `start` on, with the sample index of the whole
     /// batch (an error that names no sample is unchanged).
     pub(crate) fn shifted(self, start: usize) -> BatchError {
@@ -203,17 +215,48 @@ impl BatchError {
                 index: start + index,
                 h,
             },
+            BatchError::Tangent { index, x, y, z } => BatchError::Tangent {
+                index: start + index,
+                x,
+                y,
+                z,
+            },
             other => other,
         }
     }
 }
 
-/// Whether `w` is a unit vector within [`super::UNIT_TOLERANCE`] (false for non-finite
-/// components: the comparison fails for NaN).
+/// The bounds of a unit direction's squared length, `(1 -+ tolerance)^2` (in `f32`).
+const UNIT_SQUARED_LENGTH: [f32; 2] = [
+    ((1.0 - super::UNIT_TOLERANCE) * (1.0 - super::UNIT_TOLERANCE)) as f32,
+    ((1.0 + super::UNIT_TOLERANCE) * (1.0 + super::UNIT_TOLERANCE)) as f32,
+];
+
+/// Whether `w` is a unit vector within [`super::UNIT_TOLERANCE`]: its squared length within
+/// [`UNIT_SQUARED_LENGTH`], no square root (false for non-finite components: a comparison
+/// with NaN fails, and an infinite square is above the bound). [`lanes_ok`] decides the
+/// same, lane by lane, bit for bit.
 #[inline(always)]
 fn is_unit(w: &[f32; 3]) -> bool {
-    let length = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
-    (length - 1.0).abs() <= super::UNIT_TOLERANCE as f32
+    let [lowest, highest] = UNIT_SQUARED_LENGTH;
+    let square = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    (lowest <= square) & (square <= highest)
+}
+
+/// [`sample_ok`] of the samples in the lanes: the same operations, rounded as `f32` rounds
+/// (separate multiplications and additions), so each lane's answer is [`sample_ok`]'s.
+#[inline(always)]
+fn lanes_ok<L: BatchLanes>(wi: &V3<L>, wo: &V3<L>, h: L) -> L::Mask {
+    // A function, not a closure: closures are not always inlined into the instruction sets'
+    // copies ([`super::HostBatch`]), and their lane operations then become calls.
+    #[inline(always)]
+    fn unit<L: BatchLanes>(w: &V3<L>) -> L::Mask {
+        let [lowest, highest] = UNIT_SQUARED_LENGTH;
+        let square = w.x * w.x + w.y * w.y + w.z * w.z;
+        L::c(f64::from(lowest)).le(square) & square.le(L::c(f64::from(highest)))
+    }
+    // `h <= h` fails only for NaN.
+    unit(wi) & unit(wo) & h.le(h)
 }
 
 /// Whether sample `(wi, wo, h)` has unit directions and an offset that is not NaN.
@@ -223,9 +266,10 @@ fn sample_ok(((wi, wo), h): ((&[f32; 3], &[f32; 3]), &f32)) -> bool {
 }
 
 /// [`BatchError`] for the first sample with a direction that is not unit or a NaN offset. A
-/// branch-free pass over every sample first (it vectorises: a few percent of an evaluation;
-/// always inlined, so that [`super::HostBatch`] runs it on its instruction set), then, only
-/// if one is bad, a search for it.
+/// branch-free pass over the samples first (always inlined, so that [`super::HostBatch`] runs
+/// it on its instruction set), then, only if one is bad, a search for it. The batches check
+/// their full chunks on the lanes instead ([`lanes_ok`]), and this the last, partial chunk,
+/// a chunk the lanes found bad, and world-space blocks.
 #[inline(always)]
 pub(crate) fn check_samples(wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]) -> Result<(), BatchError> {
     let all_ok = wi
@@ -270,19 +314,7 @@ fn first_bad_sample(wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]) -> BatchError {
 const PAD_DIR: [f32; 3] = [0.0, 1.0, 0.0];
 const PAD_H: f32 = 0.0;
 
-/// The checks of every array-of-structures batch: equal lengths ([`check`]), then the samples
-/// ([`check_samples`]).
-#[inline(always)]
-pub(crate) fn check_batch(
-    wi: &[[f32; 3]],
-    wo: &[[f32; 3]],
-    h: &[f32],
-    out: usize,
-) -> Result<(), BatchError> {
-    check(wi.len(), wo.len(), h.len(), out)?;
-    check_samples(wi, wo, h)
-}
-
+/// The length check of every array-of-structures batch: `wi`, `wo`, `h` and `out` equal.
 pub(crate) fn check(wi: usize, wo: usize, h: usize, out: usize) -> Result<(), BatchLengthError> {
     if wi == wo && wo == h && h == out {
         Ok(())
@@ -311,40 +343,69 @@ fn load_dirs<L: BatchLanes>(d: &[[f32; 3]]) -> V3<L> {
 }
 
 /// Runs `f` on every chunk of `L::LANES` samples, padding the last chunk. `f` receives the
-/// lanes and the valid lanes' output slots to fill.
+/// lanes and the valid lanes' output slots to fill. `CHECK`: each chunk is checked as its
+/// lanes are loaded ([`lanes_ok`], a few operations per chunk), and at the first chunk with a
+/// bad sample the samples before it are evaluated and its error returned
+/// ([`check_samples`]'s); without, the samples were checked before (a world-space batch).
 #[inline(always)]
-fn for_each_chunk<L: BatchLanes, T: Copy>(
+fn for_each_chunk<L: BatchLanes, T: Copy, const CHECK: bool>(
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],
     h: &[f32],
     out: &mut [T],
     mut f: impl FnMut(V3<L>, V3<L>, L, &mut [T]),
-) {
+) -> Result<(), BatchError> {
     let n = L::LANES;
     let full = wi.len() / n * n;
     let chunks = wi[..full]
         .chunks_exact(n)
         .zip(wo[..full].chunks_exact(n))
         .zip(h[..full].chunks_exact(n))
-        .zip(out[..full].chunks_exact_mut(n));
-    for (((wi, wo), h), out) in chunks {
-        let h = L::from_fn(
+        .zip(out[..full].chunks_exact_mut(n))
+        .enumerate();
+    for (chunk, (((wi_k, wo_k), h_k), out_k)) in chunks {
+        let (i, o) = (load_dirs(wi_k), load_dirs(wo_k));
+        let h_lanes = L::from_fn(
             #[inline(always)]
-            |k| h[k],
+            |k| h_k[k],
         );
-        f(load_dirs(wi), load_dirs(wo), h, out);
+        if CHECK && !L::every_lane(lanes_ok(&i, &o, h_lanes)) {
+            let start = chunk * n;
+            return padded::<L, T, CHECK>((wi_k, wo_k, h_k), out_k, &mut f)
+                .map_err(|e| e.shifted(start));
+        }
+        f(i, o, h_lanes, out_k);
     }
-    let rest = wi.len() - full;
-    if rest > 0 {
+    let rest = (&wi[full..], &wo[full..], &h[full..]);
+    padded::<L, T, CHECK>(rest, &mut out[full..], &mut f).map_err(|e| e.shifted(full))
+}
+
+/// At most `L::LANES` samples through `f`, padded with [`PAD_DIR`] and [`PAD_H`]; `CHECK`:
+/// only those before the first bad sample, whose error ([`check_samples`]) is returned.
+fn padded<L: BatchLanes, T: Copy, const CHECK: bool>(
+    (wi, wo, h): (&[[f32; 3]], &[[f32; 3]], &[f32]),
+    out: &mut [T],
+    f: &mut impl FnMut(V3<L>, V3<L>, L, &mut [T]),
+) -> Result<(), BatchError> {
+    let valid = match CHECK {
+        true => check_samples(wi, wo, h),
+        false => Ok(()),
+    };
+    let end = valid
+        .as_ref()
+        .err()
+        .map_or(h.len(), |e| e.sample_index().unwrap_or(0));
+    if end > 0 {
         let pad = |d: &[[f32; 3]]| -> Vec<[f32; 3]> {
-            let mut v = vec![PAD_DIR; n];
-            v[..rest].copy_from_slice(&d[full..]);
+            let mut v = vec![PAD_DIR; L::LANES];
+            v[..end].copy_from_slice(&d[..end]);
             v
         };
         let (pwi, pwo) = (pad(wi), pad(wo));
-        let ph = L::from_fn(|k| if k < rest { h[full + k] } else { PAD_H });
-        f(load_dirs(&pwi), load_dirs(&pwo), ph, &mut out[full..]);
+        let ph = L::from_fn(|k| if k < end { h[k] } else { PAD_H });
+        f(load_dirs(&pwi), load_dirs(&pwo), ph, &mut out[..end]);
     }
+    valid
 }
 
 /// `S(wi[k], wo[k], h[k])` per channel into `out[k]`, `L::LANES` samples at a time.
@@ -353,13 +414,17 @@ fn for_each_chunk<L: BatchLanes, T: Copy>(
 /// paths, instantiated with the lane type `L`; results agree with the `f32` instantiation up
 /// to the accuracy of `wide`'s transcendental approximations (see the module documentation).
 /// Conventions (local frame, tangent +X, unit directions, `h` in [-1, 1] clamped) are those of
-/// [`Query`]; far-field models ignore `h`. Every sample is checked first (directions unit
-/// within [`super::UNIT_TOLERANCE`] and evaluated as given, `h` not NaN).
+/// [`Query`]; far-field models ignore `h`. Every sample is checked before it is evaluated
+/// (directions unit within [`super::UNIT_TOLERANCE`] and evaluated as given, `h` not NaN),
+/// on the lanes as they are loaded: a few operations per chunk, where a pass over every sample
+/// before any evaluation had cost a tenth of the batch's time.
 ///
 /// # Errors
-/// [`BatchError::Length`] if `wi`, `wo`, `h` and `out` differ in length,
-/// [`BatchError::Direction`] or [`BatchError::Offset`] naming the first bad sample; `out` is
-/// then untouched.
+/// [`BatchError::Length`] if `wi`, `wo`, `h` and `out` differ in length, and `out` is
+/// untouched; [`BatchError::Direction`] or [`BatchError::Offset`] naming the first bad sample
+/// ([`BatchError::sample_index`]), and `out` holds the values of the samples before it and is
+/// untouched from it on (the parallel batches, [`par_eval_batch`], may have written any of
+/// the rest).
 ///
 /// # Examples
 ///
@@ -384,22 +449,22 @@ pub fn eval_batch<L: BatchLanes, M: Bcsdf<L>>(
     h: &[f32],
     out: &mut [[f32; 3]],
 ) -> Result<(), BatchError> {
-    check_batch(wi, wo, h, out.len())?;
-    eval_checked(model, wi, wo, h, out);
-    Ok(())
+    check(wi.len(), wo.len(), h.len(), out.len())?;
+    eval_samples::<L, M, true>(model, wi, wo, h, out)
 }
 
-/// [`eval_batch`] of samples already checked (equal lengths, unit directions, no NaN offset).
-/// Always inlined, with its closure, into the per-instruction-set copies of [`super::HostBatch`].
+/// [`eval_batch`] of samples of equal lengths, each chunk checked as it is loaded (`CHECK`,
+/// [`for_each_chunk`]) or all checked before (not `CHECK`: then it never fails). Always
+/// inlined, with its closure, into the per-instruction-set copies of [`super::HostBatch`].
 #[inline(always)]
-pub(crate) fn eval_checked<L: BatchLanes, M: Bcsdf<L>>(
+pub(crate) fn eval_samples<L: BatchLanes, M: Bcsdf<L>, const CHECK: bool>(
     model: &M,
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],
     h: &[f32],
     out: &mut [[f32; 3]],
-) {
-    for_each_chunk(
+) -> Result<(), BatchError> {
+    for_each_chunk::<L, _, CHECK>(
         wi,
         wo,
         h,
@@ -414,7 +479,7 @@ pub(crate) fn eval_checked<L: BatchLanes, M: Bcsdf<L>>(
                 *slot = [rgb[0][k], rgb[1][k], rgb[2][k]];
             }
         },
-    );
+    )
 }
 
 /// Directions as a structure of arrays: sample `k` is `(x[k], y[k], z[k])` (local frame, as
@@ -434,7 +499,6 @@ impl<'a> DirectionSlices<'a> {
     ///
     /// # Panics
     /// If `range` is outside a component (callers check the lengths first).
-    #[cfg(feature = "parallel")]
     pub(crate) fn range(&self, range: core::ops::Range<usize>) -> DirectionSlices<'a> {
         DirectionSlices {
             x: &self.x[range.clone()],
@@ -458,12 +522,12 @@ pub struct RgbSlices<'a> {
 /// [`eval_batch`] of samples stored as a structure of arrays, the layout of the lanes
 /// themselves: each chunk of `L::LANES` samples is loaded and stored contiguously, with no
 /// transposition. The values are [`eval_batch`]'s, bit for bit (the same lanes go through the
-/// same code). Every sample is checked first, as in [`eval_batch`].
+/// same code). Every sample is checked before it is evaluated, as in [`eval_batch`].
 ///
 /// # Errors
 /// [`BatchError::ComponentLength`] naming the first slice whose length is not `h.len()`;
-/// [`BatchError::Direction`] or [`BatchError::Offset`] naming the first bad sample; `out` is
-/// then untouched.
+/// [`BatchError::Direction`] or [`BatchError::Offset`] naming the first bad sample; `out` then
+/// holds what [`eval_batch`] says.
 ///
 /// # Examples
 ///
@@ -488,25 +552,11 @@ pub fn eval_batch_soa<L: BatchLanes, M: Bcsdf<L>>(
     h: &[f32],
     out: RgbSlices<'_>,
 ) -> Result<(), BatchError> {
-    check_soa(&wi, &wo, h, &out)?;
-    eval_soa_checked(model, wi, wo, h, out);
-    Ok(())
+    check_soa_lengths(&wi, &wo, h, &out)?;
+    eval_soa_samples(model, wi, wo, h, out)
 }
 
-/// The checks of [`eval_batch_soa`]: lengths, then samples (always inlined, as
-/// [`check_samples`]).
-#[inline(always)]
-pub(crate) fn check_soa(
-    wi: &DirectionSlices,
-    wo: &DirectionSlices,
-    h: &[f32],
-    out: &RgbSlices,
-) -> Result<(), BatchError> {
-    check_soa_lengths(wi, wo, h, out)?;
-    check_soa_samples(wi, wo, h)
-}
-
-/// The length checks of [`check_soa`].
+/// The length checks of [`eval_batch_soa`].
 pub(crate) fn check_soa_lengths(
     wi: &DirectionSlices,
     wo: &DirectionSlices,
@@ -521,30 +571,57 @@ pub(crate) fn check_soa_lengths(
     check_components(wi, wo, h, &outputs)
 }
 
-/// [`eval_batch_soa`] of samples already checked (always inlined, as [`eval_checked`]).
+/// [`eval_batch_soa`] of samples of equal lengths, each chunk checked as it is loaded
+/// ([`lanes_ok`]): at the first chunk with a bad sample, the samples before it are stored and
+/// its error ([`check_soa_samples`]'s) returned. Always inlined, as [`eval_samples`].
 #[inline(always)]
-pub(crate) fn eval_soa_checked<L: BatchLanes, M: Bcsdf<L>>(
+pub(crate) fn eval_soa_samples<L: BatchLanes, M: Bcsdf<L>>(
     model: &M,
     wi: DirectionSlices<'_>,
     wo: DirectionSlices<'_>,
     h: &[f32],
     out: RgbSlices<'_>,
-) {
+) -> Result<(), BatchError> {
     let len = h.len();
     for start in (0..len).step_by(L::LANES) {
-        let value = model.eval(&Query::new(
-            soa_direction(&wi, start),
-            soa_direction(&wo, start),
-            soa_lanes(h, start, PAD_H),
-        ));
+        let (i, o) = (soa_direction(&wi, start), soa_direction(&wo, start));
+        let h_lanes = soa_lanes(h, start, PAD_H);
         let end = (start + L::LANES).min(len);
+        let valid = match L::every_lane(lanes_ok(&i, &o, h_lanes)) {
+            true => Ok(()),
+            false => first_bad_in(&wi, &wo, h, start..end),
+        };
+        let end = valid
+            .as_ref()
+            .map_or_else(|e| e.sample_index().unwrap_or(start), |()| end);
+        let value = model.eval(&Query::new(i, o, h_lanes));
         for (channel, v) in [&mut *out.r, &mut *out.g, &mut *out.b]
             .into_iter()
             .zip(value)
         {
             v.store(&mut channel[start..end]);
         }
+        valid?;
     }
+    Ok(())
+}
+
+/// [`check_soa_samples`] of the samples of `range`, the error's index counted from the
+/// batch's start.
+#[cold]
+fn first_bad_in(
+    wi: &DirectionSlices,
+    wo: &DirectionSlices,
+    h: &[f32],
+    range: core::ops::Range<usize>,
+) -> Result<(), BatchError> {
+    let start = range.start;
+    check_soa_samples(
+        &wi.range(range.clone()),
+        &wo.range(range.clone()),
+        &h[range],
+    )
+    .map_err(|e| e.shifted(start))
 }
 
 /// `L::LANES` directions of `d` from `start`, padded with [`PAD_DIR`] past its end.
@@ -676,10 +753,10 @@ impl<M: Bcsdf<BatchReal>> BatchEval for M {
 
 /// [`SampledBcsdf::pdf`] of `wi[k]` given `wo[k]`, `h[k]` into `out[k]`, `L::LANES` samples at
 /// a time (the same generic code as the scalar path, instantiated with `L`), every sample
-/// checked first as in [`eval_batch`].
+/// checked before it is evaluated, as in [`eval_batch`].
 ///
 /// # Errors
-/// As [`eval_batch`]; `out` is then untouched.
+/// As [`eval_batch`].
 pub fn pdf_batch<L: BatchLanes, M: SampledBcsdf<L>>(
     model: &M,
     wi: &[[f32; 3]],
@@ -687,20 +764,19 @@ pub fn pdf_batch<L: BatchLanes, M: SampledBcsdf<L>>(
     h: &[f32],
     out: &mut [f32],
 ) -> Result<(), BatchError> {
-    check_batch(wi, wo, h, out.len())?;
-    pdf_checked(model, wi, wo, h, out);
-    Ok(())
+    check(wi.len(), wo.len(), h.len(), out.len())?;
+    pdf_samples::<L, M, true>(model, wi, wo, h, out)
 }
 
-/// [`pdf_batch`] of samples already checked (equal lengths, unit directions, no NaN offset).
-pub(crate) fn pdf_checked<L: BatchLanes, M: SampledBcsdf<L>>(
+/// [`pdf_batch`] of samples of equal lengths, checked as [`eval_samples`] says.
+pub(crate) fn pdf_samples<L: BatchLanes, M: SampledBcsdf<L>, const CHECK: bool>(
     model: &M,
     wi: &[[f32; 3]],
     wo: &[[f32; 3]],
     h: &[f32],
     out: &mut [f32],
-) {
-    for_each_chunk(
+) -> Result<(), BatchError> {
+    for_each_chunk::<L, _, CHECK>(
         wi,
         wo,
         h,
@@ -710,7 +786,7 @@ pub(crate) fn pdf_checked<L: BatchLanes, M: SampledBcsdf<L>>(
             let n = out.len().min(L::LANES);
             model.pdf(&Query::new(wi, wo, h)).store(&mut out[..n]);
         },
-    );
+    )
 }
 
 /// Samples per task of the parallel batch, a multiple of every lane count: tens of
@@ -727,7 +803,8 @@ pub const PARALLEL_CHUNK: usize = 1024;
 /// `rayon::ThreadPool::install` to choose the threads.
 ///
 /// # Errors
-/// As [`eval_batch`], checked before any work; `out` is then untouched.
+/// As [`eval_batch`]: the first bad sample, and the values of the samples before it in `out`;
+/// the rest of `out` may have been written.
 #[cfg(feature = "parallel")]
 pub fn par_eval_batch<L: BatchLanes, M: Bcsdf<L> + Sync>(
     model: &M,
@@ -736,10 +813,9 @@ pub fn par_eval_batch<L: BatchLanes, M: Bcsdf<L> + Sync>(
     h: &[f32],
     out: &mut [[f32; 3]],
 ) -> Result<(), BatchError> {
-    par_check_batch(wi, wo, h, out.len(), check_samples)?;
+    check(wi.len(), wo.len(), h.len(), out.len())?;
     for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
-        eval_checked(model, wi, wo, h, out);
-        Ok(())
+        eval_samples::<L, M, true>(model, wi, wo, h, out)
     })
 }
 
@@ -747,7 +823,7 @@ pub fn par_eval_batch<L: BatchLanes, M: Bcsdf<L> + Sync>(
 /// [`eval_batch`]'s: the same values, bit for bit.
 ///
 /// # Errors
-/// As [`pdf_batch`], checked before any work; `out` is then untouched.
+/// As [`par_eval_batch`].
 #[cfg(feature = "parallel")]
 pub fn par_pdf_batch<L: BatchLanes, M: SampledBcsdf<L> + Sync>(
     model: &M,
@@ -756,14 +832,15 @@ pub fn par_pdf_batch<L: BatchLanes, M: SampledBcsdf<L> + Sync>(
     h: &[f32],
     out: &mut [f32],
 ) -> Result<(), BatchError> {
-    par_check_batch(wi, wo, h, out.len(), check_samples)?;
+    check(wi.len(), wo.len(), h.len(), out.len())?;
     for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
-        pdf_checked(model, wi, wo, h, out);
-        Ok(())
+        pdf_samples::<L, M, true>(model, wi, wo, h, out)
     })
 }
 
-/// Runs `f` on chunks of [`PARALLEL_CHUNK`] samples in parallel (lengths already checked).
+/// Runs `f`, a checked evaluation ([`eval_samples`]), on chunks of [`PARALLEL_CHUNK`]
+/// samples in parallel (lengths already checked), and returns the error of the first chunk
+/// that fails, its index counted from the batch's start ([`first_error`]).
 #[cfg(feature = "parallel")]
 pub(crate) fn for_each_parallel_chunk<T: Send>(
     wi: &[[f32; 3]],
@@ -773,18 +850,35 @@ pub(crate) fn for_each_parallel_chunk<T: Send>(
     f: impl Fn(&[[f32; 3]], &[[f32; 3]], &[f32], &mut [T]) -> Result<(), BatchError> + Sync,
 ) -> Result<(), BatchError> {
     use rayon::prelude::*;
-    wi.par_chunks(PARALLEL_CHUNK)
+    let chunks = wi
+        .par_chunks(PARALLEL_CHUNK)
         .zip(wo.par_chunks(PARALLEL_CHUNK))
         .zip(h.par_chunks(PARALLEL_CHUNK))
         .zip(out.par_chunks_mut(PARALLEL_CHUNK))
-        .try_for_each(|(((wi, wo), h), out)| f(wi, wo, h, out))
+        .enumerate()
+        .map(|(chunk, (((wi, wo), h), out))| (chunk, f(wi, wo, h, out)));
+    first_error(chunks)
+}
+
+/// The first error of the chunks' results, in the order of the chunks, with the sample index
+/// counted from the batch's start. Finding the first error runs every chunk before it, so
+/// the samples before the bad one are all evaluated, as in the sequential batch.
+#[cfg(feature = "parallel")]
+fn first_error(
+    chunks: impl rayon::iter::IndexedParallelIterator<Item = (usize, Result<(), BatchError>)>,
+) -> Result<(), BatchError> {
+    use rayon::prelude::*;
+    chunks
+        .map(|(chunk, result)| result.map_err(|e| e.shifted(chunk * PARALLEL_CHUNK)))
+        .find_first(Result::is_err)
+        .unwrap_or(Ok(()))
 }
 
 /// [`eval_batch_soa`] on every thread of rayon's current pool, as [`par_eval_batch`] is
 /// [`eval_batch`]'s: the same values, bit for bit, whatever the thread count.
 ///
 /// # Errors
-/// As [`eval_batch_soa`], checked before any work; `out` is then untouched.
+/// As [`par_eval_batch`].
 #[cfg(feature = "parallel")]
 pub fn par_eval_batch_soa<L: BatchLanes, M: Bcsdf<L> + Sync>(
     model: &M,
@@ -794,72 +888,41 @@ pub fn par_eval_batch_soa<L: BatchLanes, M: Bcsdf<L> + Sync>(
     out: RgbSlices<'_>,
 ) -> Result<(), BatchError> {
     check_soa_lengths(&wi, &wo, h, &out)?;
-    par_check(h.len(), |r| {
-        check_soa_samples(&wi.range(r.clone()), &wo.range(r.clone()), &h[r])
-    })?;
     for_each_parallel_soa_chunk(wi, wo, h, out, |wi, wo, h, out| {
-        eval_soa_checked(model, wi, wo, h, out)
-    });
-    Ok(())
+        eval_soa_samples(model, wi, wo, h, out)
+    })
 }
 
-/// The checks of [`check_batch`] with the samples checked by `samples` on rayon's pool
-/// ([`par_check`]).
-#[cfg(feature = "parallel")]
-pub(crate) fn par_check_batch(
-    wi: &[[f32; 3]],
-    wo: &[[f32; 3]],
-    h: &[f32],
-    out: usize,
-    samples: impl Fn(&[[f32; 3]], &[[f32; 3]], &[f32]) -> Result<(), BatchError> + Sync,
-) -> Result<(), BatchError> {
-    check(wi.len(), wo.len(), h.len(), out)?;
-    par_check(h.len(), |r| samples(&wi[r.clone()], &wo[r.clone()], &h[r]))
-}
-
-/// The sample checks of a batch of `len` samples on rayon's pool: `check` of each range of
-/// [`PARALLEL_CHUNK`] samples, and the error of the first range that fails, its index shifted
-/// to the whole batch, so the error of the sequential check. Every range is checked before
-/// any output is written, as in the sequential batch (the check streams the whole input from
-/// memory: on one thread it was a fifth of the parallel batch's time on two).
-#[cfg(feature = "parallel")]
-pub(crate) fn par_check(
-    len: usize,
-    check: impl Fn(core::ops::Range<usize>) -> Result<(), BatchError> + Sync,
-) -> Result<(), BatchError> {
-    use rayon::prelude::*;
-    let first_error = (0..len.div_ceil(PARALLEL_CHUNK))
-        .into_par_iter()
-        .map(|chunk| {
-            let start = chunk * PARALLEL_CHUNK;
-            check(start..len.min(start + PARALLEL_CHUNK)).map_err(|e| e.shifted(start))
-        })
-        .find_first(Result::is_err);
-    first_error.unwrap_or(Ok(()))
-}
-
-/// Runs `f` on chunks of [`PARALLEL_CHUNK`] samples of a structure of arrays in parallel
-/// (lengths already checked).
+/// [`for_each_parallel_chunk`] of a structure of arrays: `f` a checked evaluation
+/// ([`eval_soa_samples`]) of each chunk.
 #[cfg(feature = "parallel")]
 pub(crate) fn for_each_parallel_soa_chunk(
     wi: DirectionSlices<'_>,
     wo: DirectionSlices<'_>,
     h: &[f32],
     out: RgbSlices<'_>,
-    f: impl Fn(DirectionSlices<'_>, DirectionSlices<'_>, &[f32], RgbSlices<'_>) + Sync,
-) {
+    f: impl Fn(
+            DirectionSlices<'_>,
+            DirectionSlices<'_>,
+            &[f32],
+            RgbSlices<'_>,
+        ) -> Result<(), BatchError>
+        + Sync,
+) -> Result<(), BatchError> {
     use rayon::prelude::*;
-    out.r
+    let chunks = out
+        .r
         .par_chunks_mut(PARALLEL_CHUNK)
         .zip(out.g.par_chunks_mut(PARALLEL_CHUNK))
         .zip(out.b.par_chunks_mut(PARALLEL_CHUNK))
         .enumerate()
-        .for_each(|(chunk, ((r, g), b))| {
+        .map(|(chunk, ((r, g), b))| {
             let start = chunk * PARALLEL_CHUNK;
             let range = start..start + r.len();
             let (wi, wo) = (wi.range(range.clone()), wo.range(range.clone()));
-            f(wi, wo, &h[range], RgbSlices { r, g, b });
+            (chunk, f(wi, wo, &h[range], RgbSlices { r, g, b }))
         });
+    first_error(chunks)
 }
 
 #[cfg(test)]
@@ -992,7 +1055,12 @@ pub(crate) mod tests {
                 matches!(err, BatchError::Direction { index: 3, name: n, .. } if n == name),
                 "{err:?}"
             );
-            assert_eq!(out, [[7.0; 3]; 5]);
+            // The samples before the bad one are evaluated, none from it on.
+            let mut before = [[0.0; 3]; 3];
+            eval_batch(&hair, &wi[..3], &[good; 3], &[0.0; 3], &mut before).unwrap();
+            assert_eq!(out[..3], before);
+            assert_eq!(out[3..], [[7.0; 3]; 2]);
+            assert_eq!(err.sample_index(), Some(3));
             let mut p = [7.0; 5];
             let err = pdf_batch(&hair, &[good; 5], &wi, &[0.0; 5], &mut p).unwrap_err();
             assert!(matches!(
@@ -1003,7 +1071,10 @@ pub(crate) mod tests {
                     ..
                 }
             ));
-            assert_eq!(p, [7.0; 5]);
+            let mut p_before = [0.0; 3];
+            pdf_batch(&hair, &[good; 3], &wi[..3], &[0.0; 3], &mut p_before).unwrap();
+            assert_eq!(p[..3], p_before);
+            assert_eq!(p[3..], [7.0; 2]);
         }
         let mut out = [[0.0; 3]; 2];
         let err = eval_batch(&hair, &[good; 2], &[good; 2], &[0.0, f32::NAN], &mut out);
@@ -1258,7 +1329,23 @@ pub(crate) mod tests {
             matches!(error, Err(BatchError::Offset { index: 17, .. })),
             "{error:?}"
         );
-        assert!(r.iter().all(|&v| v == 0.0), "out untouched on error");
+        // The samples before the bad one are evaluated, none from it on.
+        let (mut r17, mut g17, mut b17) = ([0.0; 17], [0.0; 17], [0.0; 17]);
+        let out17 = RgbSlices {
+            r: &mut r17,
+            g: &mut g17,
+            b: &mut b17,
+        };
+        let along17 = along.range(0..17);
+        eval_batch_soa(&hair, along17, along17, &zeros[..17], out17).unwrap();
+        assert_eq!(
+            (&r[..17], &g[..17], &b[..17]),
+            (&r17[..], &g17[..], &b17[..])
+        );
+        assert!(
+            r[17..].iter().all(|&v| v == 0.0),
+            "out untouched from the bad sample"
+        );
     }
 
     #[test]
@@ -1281,7 +1368,7 @@ pub(crate) mod tests {
 
     /// The parallel batch is the sequential one bit for bit, in pools of one to three threads,
     /// on a length that is no multiple of the chunk or the lanes; a bad sample anywhere is the
-    /// sequential batch's error, with `out` untouched.
+    /// sequential batch's error, with the values of the samples before it in `out`.
     #[cfg(feature = "parallel")]
     #[test]
     fn the_parallel_batch_is_the_sequential_one() {
@@ -1314,12 +1401,25 @@ pub(crate) mod tests {
         let mut bad = wi.clone();
         bad[2 * PARALLEL_CHUNK + 1] = [f32::NAN, 0.0, 1.0];
         bad[3 * PARALLEL_CHUNK + 3] = [0.0; 3];
+        let first = 2 * PARALLEL_CHUNK + 1;
+        let mut sequential_out = vec![[7.0_f32; 3]; n];
+        let sequential = eval_batch(&hair, &bad, &wo, &h, &mut sequential_out).unwrap_err();
+        assert_eq!(sequential_out[..first], expected[..first]);
+        assert!(sequential_out[first..].iter().flatten().all(|&x| x == 7.0));
+        for threads in 1..=3 {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut out = vec![[7.0_f32; 3]; n];
+            let parallel = pool
+                .install(|| par_eval_batch(&hair, &bad, &wo, &h, &mut out))
+                .unwrap_err();
+            // Debug output, not PartialEq: the error holds the NaN.
+            assert_eq!(format!("{parallel:?}"), format!("{sequential:?}"));
+            assert_eq!(out[..first], expected[..first], "{threads} threads");
+        }
         let mut out = vec![[7.0_f32; 3]; n];
-        let parallel = par_eval_batch(&hair, &bad, &wo, &h, &mut out).unwrap_err();
-        let sequential = eval_batch(&hair, &bad, &wo, &h, &mut expected).unwrap_err();
-        // Debug output, not PartialEq: the error holds the NaN.
-        assert_eq!(format!("{parallel:?}"), format!("{sequential:?}"));
-        assert!(out.iter().flatten().all(|&x| x == 7.0));
         let short = par_eval_batch(&hair, &wi[1..], &wo, &h, &mut out).unwrap_err();
         assert_eq!(
             short,
@@ -1345,7 +1445,8 @@ pub(crate) mod tests {
     /// [`crate::bcsdf::HostBatch::par_eval_soa`] on every instruction set the CPU runs) is the
     /// sequential one bit for bit, in pools of one to three threads, on a length that is no
     /// multiple of the chunk or the lanes; bad samples in the third and fourth chunks are the
-    /// sequential batch's error (the first), with `out` untouched.
+    /// sequential batch's error (the first), with the values of the samples before it in
+    /// `out` (and, sequentially, nothing written from it on).
     #[cfg(feature = "parallel")]
     #[test]
     fn the_parallel_structure_of_arrays_batch_is_the_sequential_one() {
@@ -1368,17 +1469,27 @@ pub(crate) mod tests {
             };
             (slices(0), slices(3))
         }
-        // Every value as bits, or the error's Debug text (it may hold a NaN).
-        let run = |eval: &SoaEval, c: &[Vec<f32>; 6]| -> Result<Vec<u32>, String> {
+        // Every value as bits, or the error's Debug text (it may hold a NaN) with the bits of
+        // the values before the bad sample; `sequential` also checks that nothing from the bad
+        // sample on was written.
+        let run = |eval: &SoaEval, c: &[Vec<f32>; 6], sequential: bool| {
             let mut rgb = [vec![7.0_f32; n], vec![7.0_f32; n], vec![7.0_f32; n]];
             let (wi, wo) = directions(c);
             let [r, g, b] = &mut rgb;
             let result = eval(wi, wo, &h, RgbSlices { r, g, b });
+            let bits = |end: usize| -> Vec<u32> {
+                rgb.iter()
+                    .flat_map(|channel| &channel[..end])
+                    .map(|x| x.to_bits())
+                    .collect()
+            };
             match result {
-                Ok(()) => Ok(rgb.iter().flatten().map(|x| x.to_bits()).collect()),
+                Ok(()) => Ok(bits(n)),
                 Err(e) => {
-                    assert!(rgb.iter().flatten().all(|&x| x == 7.0), "out was touched");
-                    Err(format!("{e:?}"))
+                    let first = e.sample_index().unwrap();
+                    let after = rgb.iter().flat_map(|channel| &channel[first..]);
+                    assert!(!sequential || after.into_iter().all(|&x| x == 7.0));
+                    Err((format!("{e:?}"), bits(first)))
                 }
             }
         };
@@ -1400,16 +1511,30 @@ pub(crate) mod tests {
         }
         for (sequential, parallel) in &pairs {
             let (sequential, parallel) = (&**sequential, &**parallel);
-            let (expected, expected_bad) = (run(sequential, &c), run(sequential, &bad));
-            assert!(expected.is_ok() && expected_bad.is_err());
+            let (expected, expected_bad) = (run(sequential, &c, true), run(sequential, &bad, true));
+            let (Ok(values), Err((_, before))) = (&expected, &expected_bad) else {
+                panic!("the good batch must pass and the bad one fail");
+            };
+            // The values before the bad sample are those of the good batch.
+            let first = 2 * PARALLEL_CHUNK + 1;
+            let good_before: Vec<u32> = values
+                .chunks(n)
+                .flat_map(|c| &c[..first])
+                .copied()
+                .collect();
+            assert_eq!(before, &good_before);
             for threads in 1..=3 {
                 let pool = rayon::ThreadPoolBuilder::new()
                     .num_threads(threads)
                     .build()
                     .unwrap();
                 pool.install(|| {
-                    assert_eq!(run(parallel, &c), expected, "{threads} threads");
-                    assert_eq!(run(parallel, &bad), expected_bad, "{threads} threads");
+                    assert_eq!(run(parallel, &c, false), expected, "{threads} threads");
+                    assert_eq!(
+                        run(parallel, &bad, false),
+                        expected_bad,
+                        "{threads} threads"
+                    );
                 });
             }
         }

@@ -13,11 +13,9 @@
 //! ([`eval_batch`]'s module documentation).
 
 use super::batch::{
-    check_batch, check_soa, eval_checked, eval_soa_checked, BatchError, BatchEval, BatchReal,
+    check, check_soa_lengths, eval_samples, eval_soa_samples, BatchError, BatchEval, BatchReal,
     DirectionSlices, RgbSlices,
 };
-#[cfg(feature = "parallel")]
-use super::batch::{check_samples, check_soa_lengths, check_soa_samples};
 use super::model::Model;
 use crate::real::InstructionSet;
 #[cfg(target_arch = "x86_64")]
@@ -125,10 +123,10 @@ impl<M: Model> HostBatch<M> {
     }
 
     /// [`eval_batch`](super::eval_batch) on this instruction set's lanes: `S(wi[k], wo[k],
-    /// h[k])` per channel into `out[k]`, every sample checked first.
+    /// h[k])` per channel into `out[k]`, every sample checked before it is evaluated.
     ///
     /// # Errors
-    /// As [`eval_batch`](super::eval_batch); `out` is then untouched.
+    /// As [`eval_batch`](super::eval_batch), with what `out` then holds.
     pub fn eval(
         &self,
         wi: &[[f32; 3]],
@@ -136,16 +134,17 @@ impl<M: Model> HostBatch<M> {
         h: &[f32],
         out: &mut [[f32; 3]],
     ) -> Result<(), BatchError> {
-        // Checked on the lanes' instruction set too: the check is a pass over every sample.
+        check(wi.len(), wo.len(), h.len(), out.len())?;
+        // Checked on the lanes' instruction set too, block by block before the evaluation.
         on_lanes!(&self.lanes, |model| {
-            check_batch(wi, wo, h, out.len()).map(|()| eval_checked(model, wi, wo, h, out))
+            eval_samples::<_, _, true>(model, wi, wo, h, out)
         })
     }
 
     /// [`eval_batch_soa`](super::eval_batch_soa) on this instruction set's lanes.
     ///
     /// # Errors
-    /// As [`eval_batch_soa`](super::eval_batch_soa); `out` is then untouched.
+    /// As [`eval_batch_soa`](super::eval_batch_soa), with what `out` then holds.
     pub fn eval_soa(
         &self,
         wi: DirectionSlices<'_>,
@@ -153,9 +152,10 @@ impl<M: Model> HostBatch<M> {
         h: &[f32],
         out: RgbSlices<'_>,
     ) -> Result<(), BatchError> {
+        check_soa_lengths(&wi, &wo, h, &out)?;
         // Checked on the lanes' instruction set too, as in [`HostBatch::eval`].
         on_lanes!(&self.lanes, |model| {
-            check_soa(&wi, &wo, h, &out).map(|()| eval_soa_checked(model, wi, wo, h, out))
+            eval_soa_samples(model, wi, wo, h, out)
         })
     }
 
@@ -175,7 +175,9 @@ impl<M: Model> HostBatch<M> {
     ) -> Result<(), BatchError> {
         let samples = WorldSamples { tangent, wi, wo, h };
         world_batch(samples, out, |wi, wo, h, out| {
-            on_lanes!(&self.lanes, |model| eval_checked(model, wi, wo, h, out));
+            on_lanes!(&self.lanes, |model| {
+                eval_samples::<_, _, false>(model, wi, wo, h, out)
+            })
         })
     }
 
@@ -184,7 +186,7 @@ impl<M: Model> HostBatch<M> {
     /// whatever the thread count.
     ///
     /// # Errors
-    /// As [`HostBatch::eval`], checked before any work; `out` is then untouched.
+    /// As [`par_eval_batch`](super::par_eval_batch), with what `out` then holds.
     #[cfg(feature = "parallel")]
     pub fn par_eval(
         &self,
@@ -196,13 +198,11 @@ impl<M: Model> HostBatch<M> {
     where
         Self: Sync,
     {
-        let samples = |wi: &[[f32; 3]], wo: &[[f32; 3]], h: &[f32]| {
-            on_lanes!(&self.lanes, |_model| check_samples(wi, wo, h))
-        };
-        super::batch::par_check_batch(wi, wo, h, out.len(), samples)?;
+        check(wi.len(), wo.len(), h.len(), out.len())?;
         super::batch::for_each_parallel_chunk(wi, wo, h, out, |wi, wo, h, out| {
-            on_lanes!(&self.lanes, |model| eval_checked(model, wi, wo, h, out));
-            Ok(())
+            on_lanes!(&self.lanes, |model| {
+                eval_samples::<_, _, true>(model, wi, wo, h, out)
+            })
         })
     }
 
@@ -211,7 +211,7 @@ impl<M: Model> HostBatch<M> {
     /// whatever the thread count.
     ///
     /// # Errors
-    /// As [`HostBatch::eval_soa`], checked before any work; `out` is then untouched.
+    /// As [`par_eval_batch_soa`](super::par_eval_batch_soa), with what `out` then holds.
     #[cfg(feature = "parallel")]
     pub fn par_eval_soa(
         &self,
@@ -224,14 +224,11 @@ impl<M: Model> HostBatch<M> {
         Self: Sync,
     {
         check_soa_lengths(&wi, &wo, h, &out)?;
-        super::batch::par_check(h.len(), |r| {
-            let (wi, wo) = (wi.range(r.clone()), wo.range(r.clone()));
-            on_lanes!(&self.lanes, |_model| check_soa_samples(&wi, &wo, &h[r]))
-        })?;
         super::batch::for_each_parallel_soa_chunk(wi, wo, h, out, |wi, wo, h, out| {
-            on_lanes!(&self.lanes, |model| eval_soa_checked(model, wi, wo, h, out));
-        });
-        Ok(())
+            on_lanes!(&self.lanes, |model| {
+                eval_soa_samples(model, wi, wo, h, out)
+            })
+        })
     }
 }
 
@@ -260,9 +257,8 @@ mod tests {
     /// Every instruction set this CPU runs, against `f64` and scalar `f32` on 100k random
     /// samples and the hard cases, with the bounds of the `wide` lanes
     /// (`batch_matches_scalar_and_reference`). Measured on the AMD EPYC (Zen 4) development
-    /// machine, default build: against f64 7.04e-5 with AVX-512 and AVX2, 7.03e-5 on the
-    /// baseline, all at the same sample (the `1 - h^2` of single precision at |h| -> 1);
-    /// against scalar f32 8.58e-6 on every set.
+    /// machine, default build: against f64 7.01e-5 on every set, all at the same sample (the
+    /// `1 - h^2` of single precision at |h| -> 1); against scalar f32 8.58e-6 on every set.
     #[test]
     fn every_instruction_set_matches_scalar_and_reference() {
         const FLOOR: f64 = 1e-6;
@@ -320,8 +316,8 @@ mod tests {
     }
 
     /// The structure-of-arrays and parallel entry points give [`HostBatch::eval`]'s values bit
-    /// for bit on every instruction set, at every tail length; errors are `eval_batch`'s and
-    /// leave `out` untouched.
+    /// for bit on every instruction set, at every tail length; errors are `eval_batch`'s, with
+    /// the values of the samples before the bad one in `out`.
     #[test]
     fn every_entry_point_agrees_and_errors_are_typed() {
         let (wi, wo, h) = inputs(300);
@@ -364,7 +360,9 @@ mod tests {
             #[cfg(not(feature = "parallel"))]
             let nan = batch.eval(&wi[..2], &wo[..2], &[0.0, f32::NAN], &mut out);
             assert!(matches!(nan, Err(BatchError::Offset { index: 1, .. })));
-            assert_eq!(out, [[7.0; 3]; 2]);
+            let mut first = [[0.0; 3]];
+            batch.eval(&wi[..1], &wo[..1], &[0.0], &mut first).unwrap();
+            assert_eq!(out[0], first[0]);
         }
     }
 }

@@ -24,7 +24,7 @@ mod model;
 mod varying;
 
 pub use crate::real::InstructionSet;
-pub(crate) use batch::{check as check_lengths, check_samples, eval_checked, pdf_checked};
+pub(crate) use batch::{check as check_lengths, check_samples, eval_samples, pdf_samples};
 pub use batch::{
     eval_batch, eval_batch_soa, pdf_batch, BatchError, BatchEval, BatchLanes, BatchLengthError,
     BatchReal, DirectionSlices, RgbSlices, LANES,
