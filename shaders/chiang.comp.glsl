@@ -141,16 +141,15 @@ TrimmedLogistics trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
 float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
     float _e7 = (cos_i * cos_o);
-    float _e11 = max((_e7 * inv_variance_r), 0.0);
-    bool _e12 = (_e11 < BESSEL_I0_SWITCH);
-    float _e15 = (min(_e11, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    float _e16 = (_e15 * _e15);
-    float _e43 = (sin_i * sin_o);
-    float _e48 = (1.0 / max(_e11, BESSEL_I0_SWITCH));
-    float _e49 = (BESSEL_I0_SWITCH * _e48);
-    float _e86 = (_e7 - _e43);
-    float _e89 = ((sin_i * cos_o) + (cos_i * sin_o));
-    return ((lobe_norm_r * (_e12 ? ((((((((((((BESSEL_I0_NEAR[6] * _e16) + BESSEL_I0_NEAR[5]) * _e16) + BESSEL_I0_NEAR[4]) * _e16) + BESSEL_I0_NEAR[3]) * _e16) + BESSEL_I0_NEAR[2]) * _e16) + BESSEL_I0_NEAR[1]) * _e16) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e49) + BESSEL_I0_FAR[7]) * _e49) + BESSEL_I0_FAR[6]) * _e49) + BESSEL_I0_FAR[5]) * _e49) + BESSEL_I0_FAR[4]) * _e49) + BESSEL_I0_FAR[3]) * _e49) + BESSEL_I0_FAR[2]) * _e49) + BESSEL_I0_FAR[1]) * _e49) + BESSEL_I0_FAR[0]) * sqrt(_e48)))) * exp((_e12 ? -(((_e43 + 1.0) * inv_variance_r)) : -((((0.0 < _e86) ? ((_e89 * _e89) / (1.0 + max(_e86, 0.0))) : (1.0 - _e86)) * inv_variance_r)))));
+    float _e9 = (_e7 - (sin_i * sin_o));
+    float _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
+    float _e23 = max((_e7 * inv_variance_r), 0.0);
+    bool _e24 = (_e23 < BESSEL_I0_SWITCH);
+    float _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    float _e28 = (_e27 * _e27);
+    float _e56 = (1.0 / max(_e23, BESSEL_I0_SWITCH));
+    float _e57 = (BESSEL_I0_SWITCH * _e56);
+    return ((lobe_norm_r * (_e24 ? ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)))) * exp(((_e24 ? -(_e23) : 0.0) - (((0.0 < _e9) ? ((_e12 * _e12) / (1.0 + max(_e9, 0.0))) : (1.0 - _e9)) * inv_variance_r))));
 }
 
 // hair_bcsdf: `hairmath eval --model chiang`, Chiang et al. 2016 (pbrt-v4 HairBxDF): the near-field reference, S(wi, wo, h)

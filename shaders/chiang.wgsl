@@ -138,16 +138,15 @@ fn trimmed_logistics(dphi_r: f32, dphi_tt: f32, dphi_trt: f32, logistic_inv_scal
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
 fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32, lobe_norm_r: f32) -> f32 {
     let _e7 = (cos_i * cos_o);
-    let _e11 = max((_e7 * inv_variance_r), 0f);
-    let _e12 = (_e11 < BESSEL_I0_SWITCH);
-    let _e15 = (min(_e11, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    let _e16 = (_e15 * _e15);
-    let _e43 = (sin_i * sin_o);
-    let _e48 = (1f / max(_e11, BESSEL_I0_SWITCH));
-    let _e49 = (BESSEL_I0_SWITCH * _e48);
-    let _e86 = (_e7 - _e43);
-    let _e89 = ((sin_i * cos_o) + (cos_i * sin_o));
-    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e49) + BESSEL_I0_FAR[7]) * _e49) + BESSEL_I0_FAR[6]) * _e49) + BESSEL_I0_FAR[5]) * _e49) + BESSEL_I0_FAR[4]) * _e49) + BESSEL_I0_FAR[3]) * _e49) + BESSEL_I0_FAR[2]) * _e49) + BESSEL_I0_FAR[1]) * _e49) + BESSEL_I0_FAR[0]) * sqrt(_e48)), ((((((((((((BESSEL_I0_NEAR[6] * _e16) + BESSEL_I0_NEAR[5]) * _e16) + BESSEL_I0_NEAR[4]) * _e16) + BESSEL_I0_NEAR[3]) * _e16) + BESSEL_I0_NEAR[2]) * _e16) + BESSEL_I0_NEAR[1]) * _e16) + BESSEL_I0_NEAR[0]), _e12)) * exp(select(-((select((1f - _e86), ((_e89 * _e89) / (1f + max(_e86, 0f))), (0f < _e86)) * inv_variance_r)), -(((_e43 + 1f) * inv_variance_r)), _e12)));
+    let _e9 = (_e7 - (sin_i * sin_o));
+    let _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
+    let _e23 = max((_e7 * inv_variance_r), 0f);
+    let _e24 = (_e23 < BESSEL_I0_SWITCH);
+    let _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    let _e28 = (_e27 * _e27);
+    let _e56 = (1f / max(_e23, BESSEL_I0_SWITCH));
+    let _e57 = (BESSEL_I0_SWITCH * _e56);
+    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)), ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]), _e24)) * exp((select(0f, -(_e23), _e24) - (select((1f - _e9), ((_e12 * _e12) / (1f + max(_e9, 0f))), (0f < _e9)) * inv_variance_r))));
 }
 
 // hair_bcsdf: `hairmath eval --model chiang`, Chiang et al. 2016 (pbrt-v4 HairBxDF): the near-field reference, S(wi, wo, h)

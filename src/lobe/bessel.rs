@@ -62,14 +62,24 @@ const ASYMPTOTIC: [f64; ASYMPTOTIC_TERMS] = {
 /// for every finite x (it is 0 at `+inf`, the limit).
 #[inline(always)]
 pub fn i0e_split<R: Real>(x: R) -> (R, R) {
-    BesselForm::Full.i0e_split(x)
+    match R::DOUBLE {
+        true => split(
+            x,
+            R::c(SERIES_END),
+            #[inline(always)]
+            |small| series_near(small),
+            #[inline(always)]
+            |large| series_far(large),
+        ),
+        false => ABRAMOWITZ_STEGUN.split(x),
+    }
 }
 
 /// [`i0e_split`] by the reduced form (module documentation) in every precision: relative
 /// error at most 1.49e-4, for lobes whose error budget is far above the precision's.
 #[inline(always)]
 pub fn i0e_split_reduced<R: Real>(x: R) -> (R, R) {
-    BesselForm::Reduced.i0e_split(x)
+    REDUCED.split(x)
 }
 
 /// Which approximation of `I0(x) e^-x` a lobe evaluates.
@@ -86,66 +96,30 @@ impl BesselForm {
     /// `I0(x) e^-x` split as [`i0e_split`] does, by this form.
     #[inline(always)]
     pub fn i0e_split<R: Real>(self, x: R) -> (R, R) {
-        self.i0e_times_exp(
-            x,
-            #[inline(always)]
-            |x| -x,
-            #[inline(always)]
-            |_| R::c(0.0),
-        )
-    }
-
-    /// `I0(x) e^-x e^g` as `(scale, exponent)`, the value `scale * e^exponent`, for an
-    /// exponent `g` the caller gives in the form each branch of [`i0e_split`] needs:
-    /// `near_exponent(x)` returns `g - x` (the near branch's shift folded in) and
-    /// `far_exponent(x)` returns `g`, with `x` as [`i0e_split`] treats it (at least 0). Each is
-    /// called only if some lane takes its branch ([`Real::every_lane`]), so a lobe can give
-    /// each branch the form of its exponent that is cheapest and accurate there.
-    #[inline(always)]
-    pub fn i0e_times_exp<R: Real>(
-        self,
-        x: R,
-        near_exponent: impl FnOnce(R) -> R,
-        far_exponent: impl FnOnce(R) -> R,
-    ) -> (R, R) {
-        match (self, R::DOUBLE) {
-            (BesselForm::Full, true) => split(
-                x,
-                R::c(SERIES_END),
-                #[inline(always)]
-                |x| (series_near(x.min(R::c(SERIES_END))), near_exponent(x)),
-                #[inline(always)]
-                |x| (series_far(x.max(R::c(SERIES_END))), far_exponent(x)),
-            ),
-            (BesselForm::Full, false) => ABRAMOWITZ_STEGUN.split(x, near_exponent, far_exponent),
-            (BesselForm::Reduced, _) => REDUCED.split(x, near_exponent, far_exponent),
+        match self {
+            BesselForm::Full => i0e_split(x),
+            BesselForm::Reduced => i0e_split_reduced(x),
         }
     }
 }
 
-/// `(scale, exponent)` from the branches on either side of `switch`: `near(x)` where `x <
-/// switch`, `far(x)` elsewhere, `x` floored at 0. A branch no lane needs is skipped
-/// ([`Real::every_lane`]); the other is evaluated on the same argument as when both are, so
-/// every lane's value is the same either way.
+/// `(scale, shift)` (the [`i0e_split`] contract) from the branches on either side of `switch`:
+/// `near(min(x, switch))`, I0 itself, and `far(max(x, switch))`, `I0 e^-x`. A branch no lane
+/// needs is skipped ([`Real::every_lane`]); the other is evaluated on the same clamped
+/// argument as when both are, so every lane's value is the same either way.
 #[inline(always)]
-fn split<R: Real>(
-    x: R,
-    switch: R,
-    near: impl FnOnce(R) -> (R, R),
-    far: impl FnOnce(R) -> (R, R),
-) -> (R, R) {
+fn split<R: Real>(x: R, switch: R, near: impl Fn(R) -> R, far: impl Fn(R) -> R) -> (R, R) {
     let x = x.max(R::c(0.0));
     let is_near = x.lt(switch);
     if R::every_lane(is_near) {
-        return near(x);
+        return (near(x.min(switch)), -x);
     }
     if R::every_lane(!is_near) {
-        return far(x);
+        return (far(x.max(switch)), R::c(0.0));
     }
-    let ((near_scale, near_exponent), (far_scale, far_exponent)) = (near(x), far(x));
     (
-        R::select(is_near, near_scale, far_scale),
-        R::select(is_near, near_exponent, far_exponent),
+        R::select(is_near, near(x.min(switch)), far(x.max(switch))),
+        R::select(is_near, -x, R::c(0.0)),
     )
 }
 
@@ -181,22 +155,16 @@ struct BranchPolynomials {
 }
 
 impl BranchPolynomials {
-    /// [`BesselForm::i0e_times_exp`] by these polynomials.
+    /// `I0(x) e^-x` split as [`i0e_split`] does, by these polynomials.
     #[inline(always)]
-    fn split<R: Real>(
-        &self,
-        x: R,
-        near_exponent: impl FnOnce(R) -> R,
-        far_exponent: impl FnOnce(R) -> R,
-    ) -> (R, R) {
-        let switch = self.switch.get::<R>();
+    fn split<R: Real>(&self, x: R) -> (R, R) {
         split(
             x,
-            switch,
+            self.switch.get::<R>(),
             #[inline(always)]
-            |x| (self.near(x.min(switch)), near_exponent(x)),
+            |small| self.near(small),
             #[inline(always)]
-            |x| (self.far(x.max(switch)), far_exponent(x)),
+            |large| self.far(large),
         )
     }
 

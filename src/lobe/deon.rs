@@ -20,11 +20,9 @@ pub fn deon_lobe<R: Real>(v: R, sin_i: R, cos_i: R, sin_o: R, cos_o: R) -> R {
 ///
 /// `M = scale exp(shift - (1 - cos(theta_i + theta_o)) / v) / (v (1 - e^(-2/v)))`,
 ///
-/// whose exponent is never positive. Below the Bessel function's switch point (`shift = -a`)
-/// the exponent is `-(1 + sin theta_i sin theta_o) / v`, one multiply-add; above it the
-/// cancellation in `1 - cos(theta_i + theta_o)` near the peak is avoided by writing it as
-/// `sin^2 / (1 + cos)` there ([`BesselForm::i0e_times_exp`]). One exponential per evaluation;
-/// in single precision a square root and a division above the switch point.
+/// whose exponent is never positive. The cancellation in `1 - cos(theta_i + theta_o)` near the
+/// peak is avoided by writing it as `sin^2 / (1 + cos)` there. One exponential, one square root
+/// and one division per evaluation in single precision.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DeonLobe<R> {
     /// 1 / v.
@@ -74,26 +72,15 @@ impl<R: Real> DeonLobe<R> {
             #[inline(always)]
             |[sin_i, cos_i, sin_o, cos_o]| {
                 let one = R::c(1.0);
-                // Near the switch's lower side the exponent is `-x - (1 - cos(theta_i +
-                // theta_o)) / v = -(1 + sin_i sin_o) / v`, one multiply-add; on the far side
-                // `-(1 - cos) / v`, with the cancellation near the peak avoided.
-                let (scale, exponent) = form.i0e_times_exp(
-                    cos_i * cos_o * self.inv_v,
-                    #[inline(always)]
-                    |_| -(sin_i.mul_add(sin_o, one) * self.inv_v),
-                    #[inline(always)]
-                    |_| {
-                        let cos_sum = cos_i * cos_o - sin_i * sin_o;
-                        let sin_sum = sin_i * cos_o + cos_i * sin_o;
-                        let one_minus_cos = R::select(
-                            R::c(0.0).lt(cos_sum),
-                            sin_sum * sin_sum / (one + cos_sum.max(R::c(0.0))),
-                            one - cos_sum,
-                        );
-                        -(one_minus_cos * self.inv_v)
-                    },
+                let cos_sum = cos_i * cos_o - sin_i * sin_o;
+                let sin_sum = sin_i * cos_o + cos_i * sin_o;
+                let one_minus_cos = R::select(
+                    R::c(0.0).lt(cos_sum),
+                    sin_sum * sin_sum / (one + cos_sum.max(R::c(0.0))),
+                    one - cos_sum,
                 );
-                [self.norm * scale * exponent.exp_of_nonpositive()]
+                let (scale, shift) = form.i0e_split(cos_i * cos_o * self.inv_v);
+                [self.norm * scale * (shift - one_minus_cos * self.inv_v).exp_of_nonpositive()]
             },
         )[0]
     }
