@@ -101,36 +101,36 @@ FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
     return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e26, ((0.0 < (abs(_e26) + abs(_e29))) ? _e29 : 1.0)));
 }
 
-// hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
-float fresnel(float cos_i, float eta, float inv_eta) {
-    float _e11 = sqrt(max((1.0 - ((1.0 - (cos_i * cos_i)) * (inv_eta * inv_eta))), 0.0));
-    float _e12 = (eta * cos_i);
-    float _e13 = (_e12 - _e11);
-    float _e14 = (_e12 + _e11);
-    float _e15 = (eta * _e11);
-    float _e16 = (cos_i - _e15);
-    float _e17 = (cos_i + _e15);
-    float _e18 = (_e14 * _e14);
-    float _e19 = (_e17 * _e17);
-    return min(((((_e13 * _e13) * _e19) + ((_e16 * _e16) * _e18)) / ((2.0 * _e18) * _e19)), 1.0);
+// hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
+float fresnel_of_cosines(float cos_i, float cos_t, float eta) {
+    float _e3 = (eta * cos_i);
+    float _e4 = (_e3 - cos_t);
+    float _e5 = (_e3 + cos_t);
+    float _e6 = (eta * cos_t);
+    float _e7 = (cos_i - _e6);
+    float _e8 = (cos_i + _e6);
+    float _e9 = (_e5 * _e5);
+    float _e10 = (_e8 * _e8);
+    return min(((((_e4 * _e4) * _e10) + ((_e7 * _e7) * _e9)) / ((2.0 * _e9) * _e10)), 1.0);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-FibrePath fibre_path(float h, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float eta) {
-    float _e8 = min(max(h, -(1.0)), 1.0);
-    float _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
-    float _e16 = sqrt(max((1.0 - (_e11 * _e11)), 0.0));
-    float _e20 = sqrt(max((1.0 - (_e8 * _e8)), 0.0));
-    float _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
-    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * inv_cos_theta_t), _e22);
+FibrePath fibre_path(float h, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float cos_theta_t, float eta) {
+    float _e9 = min(max(h, -(1.0)), 1.0);
+    float _e12 = (((_e9 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
+    float _e17 = sqrt(max((1.0 - (_e12 * _e12)), 0.0));
+    float _e21 = sqrt(max((1.0 - (_e9 * _e9)), 0.0));
+    float _e24 = fresnel_of_cosines((cos_theta_o * _e21), (cos_theta_t * _e17), eta);
+    return FibrePath(atan(_e9, _e21), atan(_e12, _e17), ((2.0 * _e17) * inv_cos_theta_t), _e24);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
-Attenuations attenuations(float fresnel_in, float transmittance) {
-    float _e3 = (1.0 - fresnel_in);
+Attenuations attenuations(float fresnel, float transmittance) {
+    float _e3 = (1.0 - fresnel);
     float _e5 = ((_e3 * _e3) * transmittance);
-    float _e7 = ((_e5 * fresnel_in) * transmittance);
-    return Attenuations(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1.0 - (fresnel_in * transmittance)), TINY)));
+    float _e6 = (fresnel * transmittance);
+    float _e7 = (_e5 * _e6);
+    return Attenuations(fresnel, _e5, _e7, ((_e7 * _e6) / max((1.0 - _e6), TINY)));
 }
 
 // hairmath::azimuthal::exit_angle::exit_angle -- Marschner et al. 2003, eq. 3
@@ -150,32 +150,32 @@ TrimmedLogistics trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, 
 }
 
 // hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature, the nodes h and -h sharing A_p
-FarFieldNodePair far_field_node_pair(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 residual_in, float h, float weight, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float eta, vec3 sigma_a, float phi, float logistic_inv_scale, float logistic_norm) {
-    FibrePath _e26 = fibre_path(h, cos_theta_o, inv_eta, inv_cos_theta_t, eta);
-    Attenuations _e35 = attenuations(_e26.fresnel, exp((-(sigma_a.x) * _e26.segment_length)));
-    Attenuations _e44 = attenuations(_e26.fresnel, exp((-(sigma_a.y) * _e26.segment_length)));
-    Attenuations _e53 = attenuations(_e26.fresnel, exp((-(sigma_a.z) * _e26.segment_length)));
-    float _e59 = exit_angle(0.0, _e26.gamma_o, _e26.gamma_t);
-    float _e60 = (phi - _e59);
-    float _e70 = exit_angle(1.0, _e26.gamma_o, _e26.gamma_t);
-    float _e71 = (phi - _e70);
-    float _e78 = exit_angle(2.0, _e26.gamma_o, _e26.gamma_t);
-    float _e79 = (phi - _e78);
-    TrimmedLogistics _e85 = trimmed_logistics((_e60 - (TWO_PI * floor(((_e60 + PI) * INV_TWO_PI)))), (_e71 - (TWO_PI * floor(((_e71 + PI) * INV_TWO_PI)))), (_e79 - (TWO_PI * floor(((_e79 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    float _e89 = -(_e26.gamma_o);
-    float _e90 = -(_e26.gamma_t);
-    float _e91 = exit_angle(0.0, _e89, _e90);
-    float _e92 = (phi - _e91);
-    float _e98 = exit_angle(1.0, _e89, _e90);
-    float _e99 = (phi - _e98);
-    float _e105 = exit_angle(2.0, _e89, _e90);
-    float _e106 = (phi - _e105);
-    TrimmedLogistics _e112 = trimmed_logistics((_e92 - (TWO_PI * floor(((_e92 + PI) * INV_TWO_PI)))), (_e99 - (TWO_PI * floor(((_e99 + PI) * INV_TWO_PI)))), (_e106 - (TWO_PI * floor(((_e106 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    float _e116 = (_e85.r + _e112.r);
-    float _e117 = (_e85.tt + _e112.tt);
-    float _e118 = (_e85.trt + _e112.trt);
-    float _e119 = (INV_TWO_PI + INV_TWO_PI);
-    return FarFieldNodePair((r_in + (weight * (vec3(_e35.r, _e44.r, _e53.r) * _e116))), (tt_in + (weight * (vec3(_e35.tt, _e44.tt, _e53.tt) * _e117))), (trt_in + (weight * (vec3(_e35.trt, _e44.trt, _e53.trt) * _e118))), (residual_in + (weight * (vec3(_e35.residual, _e44.residual, _e53.residual) * _e119))));
+FarFieldNodePair far_field_node_pair(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 residual_in, float h, float weight, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float cos_theta_t, float eta, vec3 sigma_a, float phi, float logistic_inv_scale, float logistic_norm) {
+    FibrePath _e27 = fibre_path(h, cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, eta);
+    Attenuations _e36 = attenuations(_e27.fresnel, exp((-(sigma_a.x) * _e27.segment_length)));
+    Attenuations _e45 = attenuations(_e27.fresnel, exp((-(sigma_a.y) * _e27.segment_length)));
+    Attenuations _e54 = attenuations(_e27.fresnel, exp((-(sigma_a.z) * _e27.segment_length)));
+    float _e60 = exit_angle(0.0, _e27.gamma_o, _e27.gamma_t);
+    float _e61 = (phi - _e60);
+    float _e71 = exit_angle(1.0, _e27.gamma_o, _e27.gamma_t);
+    float _e72 = (phi - _e71);
+    float _e79 = exit_angle(2.0, _e27.gamma_o, _e27.gamma_t);
+    float _e80 = (phi - _e79);
+    TrimmedLogistics _e86 = trimmed_logistics((_e61 - (TWO_PI * floor(((_e61 + PI) * INV_TWO_PI)))), (_e72 - (TWO_PI * floor(((_e72 + PI) * INV_TWO_PI)))), (_e80 - (TWO_PI * floor(((_e80 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
+    float _e90 = -(_e27.gamma_o);
+    float _e91 = -(_e27.gamma_t);
+    float _e92 = exit_angle(0.0, _e90, _e91);
+    float _e93 = (phi - _e92);
+    float _e99 = exit_angle(1.0, _e90, _e91);
+    float _e100 = (phi - _e99);
+    float _e106 = exit_angle(2.0, _e90, _e91);
+    float _e107 = (phi - _e106);
+    TrimmedLogistics _e113 = trimmed_logistics((_e93 - (TWO_PI * floor(((_e93 + PI) * INV_TWO_PI)))), (_e100 - (TWO_PI * floor(((_e100 + PI) * INV_TWO_PI)))), (_e107 - (TWO_PI * floor(((_e107 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
+    float _e117 = (_e86.r + _e113.r);
+    float _e118 = (_e86.tt + _e113.tt);
+    float _e119 = (_e86.trt + _e113.trt);
+    float _e120 = (INV_TWO_PI + INV_TWO_PI);
+    return FarFieldNodePair((r_in + (weight * (vec3(_e36.r, _e45.r, _e54.r) * _e117))), (tt_in + (weight * (vec3(_e36.tt, _e45.tt, _e54.tt) * _e118))), (trt_in + (weight * (vec3(_e36.trt, _e45.trt, _e54.trt) * _e119))), (residual_in + (weight * (vec3(_e36.residual, _e45.residual, _e54.residual) * _e120))));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
@@ -183,13 +183,14 @@ float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_va
     float _e7 = (cos_i * cos_o);
     float _e9 = (_e7 - (sin_i * sin_o));
     float _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
-    float _e23 = max((_e7 * inv_variance_r), 0.0);
-    bool _e24 = (_e23 < BESSEL_I0_SWITCH);
-    float _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    float _e28 = (_e27 * _e27);
-    float _e56 = (1.0 / max(_e23, BESSEL_I0_SWITCH));
-    float _e57 = (BESSEL_I0_SWITCH * _e56);
-    return ((lobe_norm_r * (_e24 ? ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)))) * exp(((_e24 ? -(_e23) : 0.0) - (((0.0 < _e9) ? ((_e12 * _e12) / (1.0 + max(_e9, 0.0))) : (1.0 - _e9)) * inv_variance_r))));
+    float _e13 = abs(_e9);
+    float _e22 = max((_e7 * inv_variance_r), 0.0);
+    bool _e23 = (_e22 < BESSEL_I0_SWITCH);
+    float _e26 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    float _e27 = (_e26 * _e26);
+    float _e55 = (1.0 / max(_e22, BESSEL_I0_SWITCH));
+    float _e56 = (BESSEL_I0_SWITCH * _e55);
+    return ((lobe_norm_r * (_e23 ? ((((((((((((BESSEL_I0_NEAR[6] * _e27) + BESSEL_I0_NEAR[5]) * _e27) + BESSEL_I0_NEAR[4]) * _e27) + BESSEL_I0_NEAR[3]) * _e27) + BESSEL_I0_NEAR[2]) * _e27) + BESSEL_I0_NEAR[1]) * _e27) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e56) + BESSEL_I0_FAR[7]) * _e56) + BESSEL_I0_FAR[6]) * _e56) + BESSEL_I0_FAR[5]) * _e56) + BESSEL_I0_FAR[4]) * _e56) + BESSEL_I0_FAR[3]) * _e56) + BESSEL_I0_FAR[2]) * _e56) + BESSEL_I0_FAR[1]) * _e56) + BESSEL_I0_FAR[0]) * sqrt(_e55)))) * exp(((_e23 ? -(_e22) : 0.0) - ((((_e12 * _e12) / (1.0 + _e13)) + (_e13 - _e9)) * inv_variance_r))));
 }
 
 // hair_bcsdf: `hairmath eval --model chiang-far`, the far field of Chiang et al. 2016: S(wi, wo) averaged over h uniform in [-1, 1], with a fixed Gauss-Legendre rule over h or the adaptive reference
@@ -226,7 +227,7 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
         vec3 _e61 = tt;
         vec3 _e62 = trt;
         vec3 _e63 = residual;
-        FarFieldNodePair _e66 = far_field_node_pair(_e60, _e61, _e62, _e63, FAR_FIELD_OFFSET_PAIRS[_e58].h, FAR_FIELD_OFFSET_PAIRS[_e58].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        FarFieldNodePair _e66 = far_field_node_pair(_e60, _e61, _e62, _e63, FAR_FIELD_OFFSET_PAIRS[_e58].h, FAR_FIELD_OFFSET_PAIRS[_e58].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
         r = _e66.r;
         tt = _e66.tt;
         trt = _e66.trt;

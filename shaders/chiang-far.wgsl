@@ -100,36 +100,36 @@ fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
     return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e26, select(1f, _e29, (0f < (abs(_e26) + abs(_e29))))));
 }
 
-// hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
-fn fresnel(cos_i: f32, eta: f32, inv_eta: f32) -> f32 {
-    let _e11 = sqrt(max((1f - ((1f - (cos_i * cos_i)) * (inv_eta * inv_eta))), 0f));
-    let _e12 = (eta * cos_i);
-    let _e13 = (_e12 - _e11);
-    let _e14 = (_e12 + _e11);
-    let _e15 = (eta * _e11);
-    let _e16 = (cos_i - _e15);
-    let _e17 = (cos_i + _e15);
-    let _e18 = (_e14 * _e14);
-    let _e19 = (_e17 * _e17);
-    return min(((((_e13 * _e13) * _e19) + ((_e16 * _e16) * _e18)) / ((2f * _e18) * _e19)), 1f);
+// hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
+fn fresnel_of_cosines(cos_i: f32, cos_t: f32, eta: f32) -> f32 {
+    let _e3 = (eta * cos_i);
+    let _e4 = (_e3 - cos_t);
+    let _e5 = (_e3 + cos_t);
+    let _e6 = (eta * cos_t);
+    let _e7 = (cos_i - _e6);
+    let _e8 = (cos_i + _e6);
+    let _e9 = (_e5 * _e5);
+    let _e10 = (_e8 * _e8);
+    return min(((((_e4 * _e4) * _e10) + ((_e7 * _e7) * _e9)) / ((2f * _e9) * _e10)), 1f);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-fn fibre_path(h: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, eta: f32) -> FibrePath {
-    let _e8 = min(max(h, -(1f)), 1f);
-    let _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
-    let _e16 = sqrt(max((1f - (_e11 * _e11)), 0f));
-    let _e20 = sqrt(max((1f - (_e8 * _e8)), 0f));
-    let _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
-    return FibrePath(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * inv_cos_theta_t), _e22);
+fn fibre_path(h: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, cos_theta_t: f32, eta: f32) -> FibrePath {
+    let _e9 = min(max(h, -(1f)), 1f);
+    let _e12 = (((_e9 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
+    let _e17 = sqrt(max((1f - (_e12 * _e12)), 0f));
+    let _e21 = sqrt(max((1f - (_e9 * _e9)), 0f));
+    let _e24 = fresnel_of_cosines((cos_theta_o * _e21), (cos_theta_t * _e17), eta);
+    return FibrePath(atan2(_e9, _e21), atan2(_e12, _e17), ((2f * _e17) * inv_cos_theta_t), _e24);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
-fn attenuations(fresnel_in: f32, transmittance: f32) -> Attenuations {
-    let _e3 = (1f - fresnel_in);
+fn attenuations(fresnel: f32, transmittance: f32) -> Attenuations {
+    let _e3 = (1f - fresnel);
     let _e5 = ((_e3 * _e3) * transmittance);
-    let _e7 = ((_e5 * fresnel_in) * transmittance);
-    return Attenuations(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1f - (fresnel_in * transmittance)), TINY)));
+    let _e6 = (fresnel * transmittance);
+    let _e7 = (_e5 * _e6);
+    return Attenuations(fresnel, _e5, _e7, ((_e7 * _e6) / max((1f - _e6), TINY)));
 }
 
 // hairmath::azimuthal::exit_angle::exit_angle -- Marschner et al. 2003, eq. 3
@@ -149,32 +149,32 @@ fn trimmed_logistics(dphi_r: f32, dphi_tt: f32, dphi_trt: f32, logistic_inv_scal
 }
 
 // hairmath::bcsdf::far_field::OffsetNodes::azimuthal -- Chiang et al. 2016, eq. 8 (N_p averaged over h), by Gauss-Legendre quadrature, the nodes h and -h sharing A_p
-fn far_field_node_pair(r_in: vec3<f32>, tt_in: vec3<f32>, trt_in: vec3<f32>, residual_in: vec3<f32>, h: f32, weight: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, eta: f32, sigma_a: vec3<f32>, phi: f32, logistic_inv_scale: f32, logistic_norm: f32) -> FarFieldNodePair {
-    let _e26 = fibre_path(h, cos_theta_o, inv_eta, inv_cos_theta_t, eta);
-    let _e35 = attenuations(_e26.fresnel, exp((-(sigma_a.x) * _e26.segment_length)));
-    let _e44 = attenuations(_e26.fresnel, exp((-(sigma_a.y) * _e26.segment_length)));
-    let _e53 = attenuations(_e26.fresnel, exp((-(sigma_a.z) * _e26.segment_length)));
-    let _e59 = exit_angle(0f, _e26.gamma_o, _e26.gamma_t);
-    let _e60 = (phi - _e59);
-    let _e70 = exit_angle(1f, _e26.gamma_o, _e26.gamma_t);
-    let _e71 = (phi - _e70);
-    let _e78 = exit_angle(2f, _e26.gamma_o, _e26.gamma_t);
-    let _e79 = (phi - _e78);
-    let _e85 = trimmed_logistics((_e60 - (TWO_PI * floor(((_e60 + PI) * INV_TWO_PI)))), (_e71 - (TWO_PI * floor(((_e71 + PI) * INV_TWO_PI)))), (_e79 - (TWO_PI * floor(((_e79 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    let _e89 = -(_e26.gamma_o);
-    let _e90 = -(_e26.gamma_t);
-    let _e91 = exit_angle(0f, _e89, _e90);
-    let _e92 = (phi - _e91);
-    let _e98 = exit_angle(1f, _e89, _e90);
-    let _e99 = (phi - _e98);
-    let _e105 = exit_angle(2f, _e89, _e90);
-    let _e106 = (phi - _e105);
-    let _e112 = trimmed_logistics((_e92 - (TWO_PI * floor(((_e92 + PI) * INV_TWO_PI)))), (_e99 - (TWO_PI * floor(((_e99 + PI) * INV_TWO_PI)))), (_e106 - (TWO_PI * floor(((_e106 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    let _e116 = (_e85.r + _e112.r);
-    let _e117 = (_e85.tt + _e112.tt);
-    let _e118 = (_e85.trt + _e112.trt);
-    let _e119 = (INV_TWO_PI + INV_TWO_PI);
-    return FarFieldNodePair((r_in + (weight * (vec3<f32>(_e35.r, _e44.r, _e53.r) * _e116))), (tt_in + (weight * (vec3<f32>(_e35.tt, _e44.tt, _e53.tt) * _e117))), (trt_in + (weight * (vec3<f32>(_e35.trt, _e44.trt, _e53.trt) * _e118))), (residual_in + (weight * (vec3<f32>(_e35.residual, _e44.residual, _e53.residual) * _e119))));
+fn far_field_node_pair(r_in: vec3<f32>, tt_in: vec3<f32>, trt_in: vec3<f32>, residual_in: vec3<f32>, h: f32, weight: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, cos_theta_t: f32, eta: f32, sigma_a: vec3<f32>, phi: f32, logistic_inv_scale: f32, logistic_norm: f32) -> FarFieldNodePair {
+    let _e27 = fibre_path(h, cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, eta);
+    let _e36 = attenuations(_e27.fresnel, exp((-(sigma_a.x) * _e27.segment_length)));
+    let _e45 = attenuations(_e27.fresnel, exp((-(sigma_a.y) * _e27.segment_length)));
+    let _e54 = attenuations(_e27.fresnel, exp((-(sigma_a.z) * _e27.segment_length)));
+    let _e60 = exit_angle(0f, _e27.gamma_o, _e27.gamma_t);
+    let _e61 = (phi - _e60);
+    let _e71 = exit_angle(1f, _e27.gamma_o, _e27.gamma_t);
+    let _e72 = (phi - _e71);
+    let _e79 = exit_angle(2f, _e27.gamma_o, _e27.gamma_t);
+    let _e80 = (phi - _e79);
+    let _e86 = trimmed_logistics((_e61 - (TWO_PI * floor(((_e61 + PI) * INV_TWO_PI)))), (_e72 - (TWO_PI * floor(((_e72 + PI) * INV_TWO_PI)))), (_e80 - (TWO_PI * floor(((_e80 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
+    let _e90 = -(_e27.gamma_o);
+    let _e91 = -(_e27.gamma_t);
+    let _e92 = exit_angle(0f, _e90, _e91);
+    let _e93 = (phi - _e92);
+    let _e99 = exit_angle(1f, _e90, _e91);
+    let _e100 = (phi - _e99);
+    let _e106 = exit_angle(2f, _e90, _e91);
+    let _e107 = (phi - _e106);
+    let _e113 = trimmed_logistics((_e93 - (TWO_PI * floor(((_e93 + PI) * INV_TWO_PI)))), (_e100 - (TWO_PI * floor(((_e100 + PI) * INV_TWO_PI)))), (_e107 - (TWO_PI * floor(((_e107 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
+    let _e117 = (_e86.r + _e113.r);
+    let _e118 = (_e86.tt + _e113.tt);
+    let _e119 = (_e86.trt + _e113.trt);
+    let _e120 = (INV_TWO_PI + INV_TWO_PI);
+    return FarFieldNodePair((r_in + (weight * (vec3<f32>(_e36.r, _e45.r, _e54.r) * _e117))), (tt_in + (weight * (vec3<f32>(_e36.tt, _e45.tt, _e54.tt) * _e118))), (trt_in + (weight * (vec3<f32>(_e36.trt, _e45.trt, _e54.trt) * _e119))), (residual_in + (weight * (vec3<f32>(_e36.residual, _e45.residual, _e54.residual) * _e120))));
 }
 
 // hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
@@ -182,13 +182,14 @@ fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32
     let _e7 = (cos_i * cos_o);
     let _e9 = (_e7 - (sin_i * sin_o));
     let _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
-    let _e23 = max((_e7 * inv_variance_r), 0f);
-    let _e24 = (_e23 < BESSEL_I0_SWITCH);
-    let _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    let _e28 = (_e27 * _e27);
-    let _e56 = (1f / max(_e23, BESSEL_I0_SWITCH));
-    let _e57 = (BESSEL_I0_SWITCH * _e56);
-    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)), ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]), _e24)) * exp((select(0f, -(_e23), _e24) - (select((1f - _e9), ((_e12 * _e12) / (1f + max(_e9, 0f))), (0f < _e9)) * inv_variance_r))));
+    let _e13 = abs(_e9);
+    let _e22 = max((_e7 * inv_variance_r), 0f);
+    let _e23 = (_e22 < BESSEL_I0_SWITCH);
+    let _e26 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    let _e27 = (_e26 * _e26);
+    let _e55 = (1f / max(_e22, BESSEL_I0_SWITCH));
+    let _e56 = (BESSEL_I0_SWITCH * _e55);
+    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e56) + BESSEL_I0_FAR[7]) * _e56) + BESSEL_I0_FAR[6]) * _e56) + BESSEL_I0_FAR[5]) * _e56) + BESSEL_I0_FAR[4]) * _e56) + BESSEL_I0_FAR[3]) * _e56) + BESSEL_I0_FAR[2]) * _e56) + BESSEL_I0_FAR[1]) * _e56) + BESSEL_I0_FAR[0]) * sqrt(_e55)), ((((((((((((BESSEL_I0_NEAR[6] * _e27) + BESSEL_I0_NEAR[5]) * _e27) + BESSEL_I0_NEAR[4]) * _e27) + BESSEL_I0_NEAR[3]) * _e27) + BESSEL_I0_NEAR[2]) * _e27) + BESSEL_I0_NEAR[1]) * _e27) + BESSEL_I0_NEAR[0]), _e23)) * exp((select(0f, -(_e22), _e23) - ((((_e12 * _e12) / (1f + _e13)) + (_e13 - _e9)) * inv_variance_r))));
 }
 
 // hair_bcsdf: `hairmath eval --model chiang-far`, the far field of Chiang et al. 2016: S(wi, wo) averaged over h uniform in [-1, 1], with a fixed Gauss-Legendre rule over h or the adaptive reference
@@ -220,7 +221,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         let _e61 = tt;
         let _e62 = trt;
         let _e63 = residual;
-        let _e66 = far_field_node_pair(_e60, _e61, _e62, _e63, FAR_FIELD_OFFSET_PAIRS[_e58].h, FAR_FIELD_OFFSET_PAIRS[_e58].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        let _e66 = far_field_node_pair(_e60, _e61, _e62, _e63, FAR_FIELD_OFFSET_PAIRS[_e58].h, FAR_FIELD_OFFSET_PAIRS[_e58].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
         r = _e66.r;
         tt = _e66.tt;
         trt = _e66.trt;

@@ -90,36 +90,36 @@ FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
     return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e26, ((0.0 < (abs(_e26) + abs(_e29))) ? _e29 : 1.0)));
 }
 
-// hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
-float fresnel(float cos_i, float eta, float inv_eta) {
-    float _e11 = sqrt(max((1.0 - ((1.0 - (cos_i * cos_i)) * (inv_eta * inv_eta))), 0.0));
-    float _e12 = (eta * cos_i);
-    float _e13 = (_e12 - _e11);
-    float _e14 = (_e12 + _e11);
-    float _e15 = (eta * _e11);
-    float _e16 = (cos_i - _e15);
-    float _e17 = (cos_i + _e15);
-    float _e18 = (_e14 * _e14);
-    float _e19 = (_e17 * _e17);
-    return min(((((_e13 * _e13) * _e19) + ((_e16 * _e16) * _e18)) / ((2.0 * _e18) * _e19)), 1.0);
+// hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
+float fresnel_of_cosines(float cos_i, float cos_t, float eta) {
+    float _e3 = (eta * cos_i);
+    float _e4 = (_e3 - cos_t);
+    float _e5 = (_e3 + cos_t);
+    float _e6 = (eta * cos_t);
+    float _e7 = (cos_i - _e6);
+    float _e8 = (cos_i + _e6);
+    float _e9 = (_e5 * _e5);
+    float _e10 = (_e8 * _e8);
+    return min(((((_e4 * _e4) * _e10) + ((_e7 * _e7) * _e9)) / ((2.0 * _e9) * _e10)), 1.0);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-FibrePath fibre_path(float h_in, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float eta) {
-    float _e8 = min(max(h_in, -(1.0)), 1.0);
-    float _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
-    float _e16 = sqrt(max((1.0 - (_e11 * _e11)), 0.0));
-    float _e20 = sqrt(max((1.0 - (_e8 * _e8)), 0.0));
-    float _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
-    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * inv_cos_theta_t), _e22);
+FibrePath fibre_path(float h_in, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float cos_theta_t, float eta) {
+    float _e9 = min(max(h_in, -(1.0)), 1.0);
+    float _e12 = (((_e9 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
+    float _e17 = sqrt(max((1.0 - (_e12 * _e12)), 0.0));
+    float _e21 = sqrt(max((1.0 - (_e9 * _e9)), 0.0));
+    float _e24 = fresnel_of_cosines((cos_theta_o * _e21), (cos_theta_t * _e17), eta);
+    return FibrePath(atan(_e9, _e21), atan(_e12, _e17), ((2.0 * _e17) * inv_cos_theta_t), _e24);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
-Attenuations attenuations(float fresnel_in, float transmittance) {
-    float _e3 = (1.0 - fresnel_in);
+Attenuations attenuations(float fresnel, float transmittance) {
+    float _e3 = (1.0 - fresnel);
     float _e5 = ((_e3 * _e3) * transmittance);
-    float _e7 = ((_e5 * fresnel_in) * transmittance);
-    return Attenuations(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1.0 - (fresnel_in * transmittance)), TINY)));
+    float _e6 = (fresnel * transmittance);
+    float _e7 = (_e5 * _e6);
+    return Attenuations(fresnel, _e5, _e7, ((_e7 * _e6) / max((1.0 - _e6), TINY)));
 }
 
 // hairmath::azimuthal::exit_angle::exit_angle -- Marschner et al. 2003, eq. 3
@@ -143,13 +143,14 @@ float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_va
     float _e7 = (cos_i * cos_o);
     float _e9 = (_e7 - (sin_i * sin_o));
     float _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
-    float _e23 = max((_e7 * inv_variance_r), 0.0);
-    bool _e24 = (_e23 < BESSEL_I0_SWITCH);
-    float _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    float _e28 = (_e27 * _e27);
-    float _e56 = (1.0 / max(_e23, BESSEL_I0_SWITCH));
-    float _e57 = (BESSEL_I0_SWITCH * _e56);
-    return ((lobe_norm_r * (_e24 ? ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)))) * exp(((_e24 ? -(_e23) : 0.0) - (((0.0 < _e9) ? ((_e12 * _e12) / (1.0 + max(_e9, 0.0))) : (1.0 - _e9)) * inv_variance_r))));
+    float _e13 = abs(_e9);
+    float _e22 = max((_e7 * inv_variance_r), 0.0);
+    bool _e23 = (_e22 < BESSEL_I0_SWITCH);
+    float _e26 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    float _e27 = (_e26 * _e26);
+    float _e55 = (1.0 / max(_e22, BESSEL_I0_SWITCH));
+    float _e56 = (BESSEL_I0_SWITCH * _e55);
+    return ((lobe_norm_r * (_e23 ? ((((((((((((BESSEL_I0_NEAR[6] * _e27) + BESSEL_I0_NEAR[5]) * _e27) + BESSEL_I0_NEAR[4]) * _e27) + BESSEL_I0_NEAR[3]) * _e27) + BESSEL_I0_NEAR[2]) * _e27) + BESSEL_I0_NEAR[1]) * _e27) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e56) + BESSEL_I0_FAR[7]) * _e56) + BESSEL_I0_FAR[6]) * _e56) + BESSEL_I0_FAR[5]) * _e56) + BESSEL_I0_FAR[4]) * _e56) + BESSEL_I0_FAR[3]) * _e56) + BESSEL_I0_FAR[2]) * _e56) + BESSEL_I0_FAR[1]) * _e56) + BESSEL_I0_FAR[0]) * sqrt(_e55)))) * exp(((_e23 ? -(_e22) : 0.0) - ((((_e12 * _e12) / (1.0 + _e13)) + (_e13 - _e9)) * inv_variance_r))));
 }
 
 // hair_bcsdf: `hairmath eval --model chiang`, Chiang et al. 2016 (pbrt-v4 HairBxDF): the near-field reference, S(wi, wo, h)
@@ -160,7 +161,7 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo, float h) {
     float _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
     float cos_theta_t = sqrt(max((1.0 - (_e37 * _e37)), 0.0));
     float inv_cos_theta_t = (1.0 / cos_theta_t);
-    FibrePath _e45 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, uniforms.eta);
+    FibrePath _e45 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
     Attenuations _e53 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.x) * _e45.segment_length)));
     Attenuations _e61 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.y) * _e45.segment_length)));
     Attenuations _e69 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.z) * _e45.segment_length)));

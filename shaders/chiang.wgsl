@@ -87,36 +87,36 @@ fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
     return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e26, select(1f, _e29, (0f < (abs(_e26) + abs(_e29))))));
 }
 
-// hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
-fn fresnel(cos_i: f32, eta: f32, inv_eta: f32) -> f32 {
-    let _e11 = sqrt(max((1f - ((1f - (cos_i * cos_i)) * (inv_eta * inv_eta))), 0f));
-    let _e12 = (eta * cos_i);
-    let _e13 = (_e12 - _e11);
-    let _e14 = (_e12 + _e11);
-    let _e15 = (eta * _e11);
-    let _e16 = (cos_i - _e15);
-    let _e17 = (cos_i + _e15);
-    let _e18 = (_e14 * _e14);
-    let _e19 = (_e17 * _e17);
-    return min(((((_e13 * _e13) * _e19) + ((_e16 * _e16) * _e18)) / ((2f * _e18) * _e19)), 1f);
+// hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
+fn fresnel_of_cosines(cos_i: f32, cos_t: f32, eta: f32) -> f32 {
+    let _e3 = (eta * cos_i);
+    let _e4 = (_e3 - cos_t);
+    let _e5 = (_e3 + cos_t);
+    let _e6 = (eta * cos_t);
+    let _e7 = (cos_i - _e6);
+    let _e8 = (cos_i + _e6);
+    let _e9 = (_e5 * _e5);
+    let _e10 = (_e8 * _e8);
+    return min(((((_e4 * _e4) * _e10) + ((_e7 * _e7) * _e9)) / ((2f * _e9) * _e10)), 1f);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-fn fibre_path(h_in: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, eta: f32) -> FibrePath {
-    let _e8 = min(max(h_in, -(1f)), 1f);
-    let _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
-    let _e16 = sqrt(max((1f - (_e11 * _e11)), 0f));
-    let _e20 = sqrt(max((1f - (_e8 * _e8)), 0f));
-    let _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
-    return FibrePath(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * inv_cos_theta_t), _e22);
+fn fibre_path(h_in: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, cos_theta_t: f32, eta: f32) -> FibrePath {
+    let _e9 = min(max(h_in, -(1f)), 1f);
+    let _e12 = (((_e9 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
+    let _e17 = sqrt(max((1f - (_e12 * _e12)), 0f));
+    let _e21 = sqrt(max((1f - (_e9 * _e9)), 0f));
+    let _e24 = fresnel_of_cosines((cos_theta_o * _e21), (cos_theta_t * _e17), eta);
+    return FibrePath(atan2(_e9, _e21), atan2(_e12, _e17), ((2f * _e17) * inv_cos_theta_t), _e24);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
-fn attenuations(fresnel_in: f32, transmittance: f32) -> Attenuations {
-    let _e3 = (1f - fresnel_in);
+fn attenuations(fresnel: f32, transmittance: f32) -> Attenuations {
+    let _e3 = (1f - fresnel);
     let _e5 = ((_e3 * _e3) * transmittance);
-    let _e7 = ((_e5 * fresnel_in) * transmittance);
-    return Attenuations(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1f - (fresnel_in * transmittance)), TINY)));
+    let _e6 = (fresnel * transmittance);
+    let _e7 = (_e5 * _e6);
+    return Attenuations(fresnel, _e5, _e7, ((_e7 * _e6) / max((1f - _e6), TINY)));
 }
 
 // hairmath::azimuthal::exit_angle::exit_angle -- Marschner et al. 2003, eq. 3
@@ -140,13 +140,14 @@ fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32
     let _e7 = (cos_i * cos_o);
     let _e9 = (_e7 - (sin_i * sin_o));
     let _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
-    let _e23 = max((_e7 * inv_variance_r), 0f);
-    let _e24 = (_e23 < BESSEL_I0_SWITCH);
-    let _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    let _e28 = (_e27 * _e27);
-    let _e56 = (1f / max(_e23, BESSEL_I0_SWITCH));
-    let _e57 = (BESSEL_I0_SWITCH * _e56);
-    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)), ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]), _e24)) * exp((select(0f, -(_e23), _e24) - (select((1f - _e9), ((_e12 * _e12) / (1f + max(_e9, 0f))), (0f < _e9)) * inv_variance_r))));
+    let _e13 = abs(_e9);
+    let _e22 = max((_e7 * inv_variance_r), 0f);
+    let _e23 = (_e22 < BESSEL_I0_SWITCH);
+    let _e26 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    let _e27 = (_e26 * _e26);
+    let _e55 = (1f / max(_e22, BESSEL_I0_SWITCH));
+    let _e56 = (BESSEL_I0_SWITCH * _e55);
+    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e56) + BESSEL_I0_FAR[7]) * _e56) + BESSEL_I0_FAR[6]) * _e56) + BESSEL_I0_FAR[5]) * _e56) + BESSEL_I0_FAR[4]) * _e56) + BESSEL_I0_FAR[3]) * _e56) + BESSEL_I0_FAR[2]) * _e56) + BESSEL_I0_FAR[1]) * _e56) + BESSEL_I0_FAR[0]) * sqrt(_e55)), ((((((((((((BESSEL_I0_NEAR[6] * _e27) + BESSEL_I0_NEAR[5]) * _e27) + BESSEL_I0_NEAR[4]) * _e27) + BESSEL_I0_NEAR[3]) * _e27) + BESSEL_I0_NEAR[2]) * _e27) + BESSEL_I0_NEAR[1]) * _e27) + BESSEL_I0_NEAR[0]), _e23)) * exp((select(0f, -(_e22), _e23) - ((((_e12 * _e12) / (1f + _e13)) + (_e13 - _e9)) * inv_variance_r))));
 }
 
 // hair_bcsdf: `hairmath eval --model chiang`, Chiang et al. 2016 (pbrt-v4 HairBxDF): the near-field reference, S(wi, wo, h)
@@ -157,7 +158,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>, h: f32) -> vec3<f32> {
     let _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
     let cos_theta_t = sqrt(max((1f - (_e37 * _e37)), 0f));
     let inv_cos_theta_t = (1f / cos_theta_t);
-    let _e45 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, uniforms.eta);
+    let _e45 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
     let _e53 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.x) * _e45.segment_length)));
     let _e61 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.y) * _e45.segment_length)));
     let _e69 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.z) * _e45.segment_length)));

@@ -122,36 +122,36 @@ float tt_gaussian(float phi, float a, float b) {
     return (a * exp((-(b) * (_e6 * _e6))));
 }
 
-// hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
-float fresnel(float cos_i, float eta, float inv_eta) {
-    float _e11 = sqrt(max((1.0 - ((1.0 - (cos_i * cos_i)) * (inv_eta * inv_eta))), 0.0));
-    float _e12 = (eta * cos_i);
-    float _e13 = (_e12 - _e11);
-    float _e14 = (_e12 + _e11);
-    float _e15 = (eta * _e11);
-    float _e16 = (cos_i - _e15);
-    float _e17 = (cos_i + _e15);
-    float _e18 = (_e14 * _e14);
-    float _e19 = (_e17 * _e17);
-    return min(((((_e13 * _e13) * _e19) + ((_e16 * _e16) * _e18)) / ((2.0 * _e18) * _e19)), 1.0);
+// hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
+float fresnel_of_cosines(float cos_i, float cos_t, float eta) {
+    float _e3 = (eta * cos_i);
+    float _e4 = (_e3 - cos_t);
+    float _e5 = (_e3 + cos_t);
+    float _e6 = (eta * cos_t);
+    float _e7 = (cos_i - _e6);
+    float _e8 = (cos_i + _e6);
+    float _e9 = (_e5 * _e5);
+    float _e10 = (_e8 * _e8);
+    return min(((((_e4 * _e4) * _e10) + ((_e7 * _e7) * _e9)) / ((2.0 * _e9) * _e10)), 1.0);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-FibrePath fibre_path(float h, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float eta) {
-    float _e8 = min(max(h, -(1.0)), 1.0);
-    float _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
-    float _e16 = sqrt(max((1.0 - (_e11 * _e11)), 0.0));
-    float _e20 = sqrt(max((1.0 - (_e8 * _e8)), 0.0));
-    float _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
-    return FibrePath(atan(_e8, _e20), atan(_e11, _e16), ((2.0 * _e16) * inv_cos_theta_t), _e22);
+FibrePath fibre_path(float h, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float cos_theta_t, float eta) {
+    float _e9 = min(max(h, -(1.0)), 1.0);
+    float _e12 = (((_e9 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
+    float _e17 = sqrt(max((1.0 - (_e12 * _e12)), 0.0));
+    float _e21 = sqrt(max((1.0 - (_e9 * _e9)), 0.0));
+    float _e24 = fresnel_of_cosines((cos_theta_o * _e21), (cos_theta_t * _e17), eta);
+    return FibrePath(atan(_e9, _e21), atan(_e12, _e17), ((2.0 * _e17) * inv_cos_theta_t), _e24);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
-Attenuations attenuations(float fresnel_in, float transmittance) {
-    float _e3 = (1.0 - fresnel_in);
+Attenuations attenuations(float fresnel, float transmittance) {
+    float _e3 = (1.0 - fresnel);
     float _e5 = ((_e3 * _e3) * transmittance);
-    float _e7 = ((_e5 * fresnel_in) * transmittance);
-    return Attenuations(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1.0 - (fresnel_in * transmittance)), TINY)));
+    float _e6 = (fresnel * transmittance);
+    float _e7 = (_e5 * _e6);
+    return Attenuations(fresnel, _e5, _e7, ((_e7 * _e6) / max((1.0 - _e6), TINY)));
 }
 
 // hair_bcsdf: `hairmath eval --model frostbite-refit`, Frostbite 2019 with hairmath's refitted single offsets of the TT and TRT attenuations (h = 0.600 and 0.719), S(wi, wo)
@@ -174,7 +174,7 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     float _e62 = (_e23.sin_theta_o * inv_eta);
     float cos_theta_t = sqrt(max((1.0 - (_e62 * _e62)), 0.0));
     float inv_cos_theta_t = (1.0 / cos_theta_t);
-    FibrePath _e69 = fibre_path(REFIT_TT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, uniforms.eta);
+    FibrePath _e69 = fibre_path(REFIT_TT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
     float _e72 = -(uniforms.sigma_a.x);
     Attenuations _e75 = attenuations(_e69.fresnel, exp((_e72 * _e69.segment_length)));
     float _e77 = -(uniforms.sigma_a.y);
@@ -183,7 +183,7 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     Attenuations _e85 = attenuations(_e69.fresnel, exp((_e82 * _e69.segment_length)));
     float _e91 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - uniforms.shift_trt));
     float trt_lobe = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
-    FibrePath _e103 = fibre_path(REFIT_TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, uniforms.eta);
+    FibrePath _e103 = fibre_path(REFIT_TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
     Attenuations _e108 = attenuations(_e103.fresnel, exp((_e72 * _e103.segment_length)));
     Attenuations _e112 = attenuations(_e103.fresnel, exp((_e77 * _e103.segment_length)));
     Attenuations _e116 = attenuations(_e103.fresnel, exp((_e82 * _e103.segment_length)));

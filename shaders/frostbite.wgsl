@@ -119,36 +119,36 @@ fn tt_gaussian(phi: f32, a: f32, b: f32) -> f32 {
     return (a * exp((-(b) * (_e6 * _e6))));
 }
 
-// hairmath::fresnel::fresnel -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance)
-fn fresnel(cos_i: f32, eta: f32, inv_eta: f32) -> f32 {
-    let _e11 = sqrt(max((1f - ((1f - (cos_i * cos_i)) * (inv_eta * inv_eta))), 0f));
-    let _e12 = (eta * cos_i);
-    let _e13 = (_e12 - _e11);
-    let _e14 = (_e12 + _e11);
-    let _e15 = (eta * _e11);
-    let _e16 = (cos_i - _e15);
-    let _e17 = (cos_i + _e15);
-    let _e18 = (_e14 * _e14);
-    let _e19 = (_e17 * _e17);
-    return min(((((_e13 * _e13) * _e19) + ((_e16 * _e16) * _e18)) / ((2f * _e18) * _e19)), 1f);
+// hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
+fn fresnel_of_cosines(cos_i: f32, cos_t: f32, eta: f32) -> f32 {
+    let _e3 = (eta * cos_i);
+    let _e4 = (_e3 - cos_t);
+    let _e5 = (_e3 + cos_t);
+    let _e6 = (eta * cos_t);
+    let _e7 = (cos_i - _e6);
+    let _e8 = (cos_i + _e6);
+    let _e9 = (_e5 * _e5);
+    let _e10 = (_e8 * _e8);
+    return min(((((_e4 * _e4) * _e10) + ((_e7 * _e7) * _e9)) / ((2f * _e9) * _e10)), 1f);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
-fn fibre_path(h: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, eta: f32) -> FibrePath {
-    let _e8 = min(max(h, -(1f)), 1f);
-    let _e11 = (((_e8 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
-    let _e16 = sqrt(max((1f - (_e11 * _e11)), 0f));
-    let _e20 = sqrt(max((1f - (_e8 * _e8)), 0f));
-    let _e22 = fresnel((cos_theta_o * _e20), eta, inv_eta);
-    return FibrePath(atan2(_e8, _e20), atan2(_e11, _e16), ((2f * _e16) * inv_cos_theta_t), _e22);
+fn fibre_path(h: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, cos_theta_t: f32, eta: f32) -> FibrePath {
+    let _e9 = min(max(h, -(1f)), 1f);
+    let _e12 = (((_e9 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
+    let _e17 = sqrt(max((1f - (_e12 * _e12)), 0f));
+    let _e21 = sqrt(max((1f - (_e9 * _e9)), 0f));
+    let _e24 = fresnel_of_cosines((cos_theta_o * _e21), (cos_theta_t * _e17), eta);
+    return FibrePath(atan2(_e9, _e21), atan2(_e12, _e17), ((2f * _e17) * inv_cos_theta_t), _e24);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
-fn attenuations(fresnel_in: f32, transmittance: f32) -> Attenuations {
-    let _e3 = (1f - fresnel_in);
+fn attenuations(fresnel: f32, transmittance: f32) -> Attenuations {
+    let _e3 = (1f - fresnel);
     let _e5 = ((_e3 * _e3) * transmittance);
-    let _e7 = ((_e5 * fresnel_in) * transmittance);
-    return Attenuations(fresnel_in, _e5, _e7, (((_e7 * fresnel_in) * transmittance) / max((1f - (fresnel_in * transmittance)), TINY)));
+    let _e6 = (fresnel * transmittance);
+    let _e7 = (_e5 * _e6);
+    return Attenuations(fresnel, _e5, _e7, ((_e7 * _e6) / max((1f - _e6), TINY)));
 }
 
 // hair_bcsdf: `hairmath eval --model frostbite`, Tafuri 2019 (Frostbite): Karis' R, TT from per-slice Gaussians in a 2D table attenuated at h = 0, TRT Karis' scaled by the roughness factor s_r and attenuated at h = sqrt(3)/2, S(wi, wo)
@@ -171,7 +171,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e62 = (_e23.sin_theta_o * inv_eta);
     let cos_theta_t = sqrt(max((1f - (_e62 * _e62)), 0f));
     let inv_cos_theta_t = (1f / cos_theta_t);
-    let _e69 = fibre_path(TT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, uniforms.eta);
+    let _e69 = fibre_path(TT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
     let _e72 = -(uniforms.sigma_a.x);
     let _e75 = attenuations(_e69.fresnel, exp((_e72 * _e69.segment_length)));
     let _e77 = -(uniforms.sigma_a.y);
@@ -180,7 +180,7 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let _e85 = attenuations(_e69.fresnel, exp((_e82 * _e69.segment_length)));
     let _e91 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - uniforms.shift_trt));
     let trt_lobe = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
-    let _e103 = fibre_path(TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, uniforms.eta);
+    let _e103 = fibre_path(TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
     let _e108 = attenuations(_e103.fresnel, exp((_e72 * _e103.segment_length)));
     let _e112 = attenuations(_e103.fresnel, exp((_e77 * _e103.segment_length)));
     let _e116 = attenuations(_e103.fresnel, exp((_e82 * _e103.segment_length)));

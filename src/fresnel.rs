@@ -55,6 +55,25 @@ pub fn fresnel_from_outside<R: Real>(cos_i: R, eta: R, inv_eta: R) -> R {
     )[0]
 }
 
+/// [`fresnel_from_outside`] from both cosines, for callers that know the cosine `cos_t` of the
+/// transmitted direction already (a fibre's path: `cos theta_t cos gamma_t`, the Bravais split of
+/// the refracted direction), so Snell's law costs no square root here. `cos_i` and `cos_t` in
+/// [0, 1], `eta >= 1`; the result is in [0, 1].
+#[inline(always)]
+pub fn fresnel_of_cosines<R: Real>(cos_i: R, cos_t: R, eta: R) -> R {
+    const FUNCTION: ShaderFunction = crate::shader_function!(
+        fresnel_of_cosines,
+        "Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)",
+        [cos_i, cos_t, eta]
+    );
+    R::call(
+        &FUNCTION,
+        [cos_i, cos_t, eta],
+        #[inline(always)]
+        |[cos_i, cos_t, eta]| [amplitude_ratios_squared(cos_i, cos_t, eta)],
+    )[0]
+}
+
 /// `(R, sin^2 theta_t)` for `cos_i` in [0, 1] on the side of relative index `eta` (reciprocal
 /// `inv_eta`); `R` is meaningful only where `sin^2 theta_t < 1` (no total internal reflection).
 #[inline(always)]
@@ -62,11 +81,18 @@ fn reflectance<R: Real>(cos_i: R, eta: R, inv_eta: R) -> (R, R) {
     let one = R::c(1.0);
     let sin2_t = (one - cos_i * cos_i) * (inv_eta * inv_eta);
     let cos_t = safe_sqrt(one - sin2_t);
+    (amplitude_ratios_squared(cos_i, cos_t, eta), sin2_t)
+}
+
+/// `min(1, (r_par^2 + r_perp^2) / 2)` with `r_par = (eta cos_i - cos_t) / (eta cos_i + cos_t)`
+/// and `r_perp = (cos_i - eta cos_t) / (cos_i + eta cos_t)` (Born and Wolf, section 1.5),
+/// sharing one division: `(a^2 d^2 + c^2 b^2) / (2 b^2 d^2)` for `r_par = a / b`, `r_perp = c / d`.
+#[inline(always)]
+fn amplitude_ratios_squared<R: Real>(cos_i: R, cos_t: R, eta: R) -> R {
     let (a, b) = (eta * cos_i - cos_t, eta * cos_i + cos_t);
     let (c, d) = (cos_i - eta * cos_t, cos_i + eta * cos_t);
     let (bb, dd) = (b * b, d * d);
-    let r = (a * a * dd + c * c * bb) / (R::c(2.0) * bb * dd);
-    (r.min(one), sin2_t)
+    ((a * a * dd + c * c * bb) / (R::c(2.0) * bb * dd)).min(R::c(1.0))
 }
 
 /// Schlick's approximation `R0 + (1 - R0)(1 - cos_i)^5` with `R0 = ((eta - 1)/(eta + 1))^2`
@@ -153,6 +179,63 @@ mod tests {
         let cos_b = 1.0 / (1.0 + eta * eta).sqrt();
         let r_perp: f64 = (1.0 - eta * eta) / (1.0 + eta * eta);
         assert!((fresnel_dielectric(cos_b, eta) - 0.5 * r_perp * r_perp).abs() < 1e-14);
+    }
+
+    /// From Snell's cosine, the reflectance of both cosines is [`fresnel_dielectric`]'s; and
+    /// the cosine a fibre's path passes, cos theta_t cos gamma_t, is that of the refracted
+    /// direction from the vector form of Snell's law (the Bravais split of the direction).
+    #[test]
+    fn fresnel_of_cosines_is_fresnel_with_the_transmitted_cosine() {
+        for k in 0..=200 {
+            let cos_i = k as f64 / 200.0;
+            for eta in [1.0001_f64, 1.33, 1.55, 2.4, 3.0] {
+                let cos_t = (1.0 - (1.0 - cos_i * cos_i) / (eta * eta)).sqrt();
+                let got = fresnel_of_cosines(cos_i, cos_t, eta);
+                let want = fresnel_dielectric(cos_i, eta);
+                // Rounding only: near grazing with eta -> 1 the reflectance is steep in cos_t,
+                // which the two compute in different orders.
+                assert!((got - want).abs() < 1e-12, "{cos_i} {eta}: {got} vs {want}");
+                let got32 = fresnel_of_cosines(cos_i as f32, cos_t as f32, eta as f32);
+                assert!(
+                    (f64::from(got32) - want).abs() < 1e-6,
+                    "{cos_i} {eta}: {got32}"
+                );
+            }
+        }
+        let eta = 1.55_f64;
+        for &theta in &[0.0_f64, 0.3, 0.9, 1.4, 1.57] {
+            for &gamma in &[0.0_f64, 0.1, 0.6, 1.2, 1.57] {
+                let d = glam::DVec3::new(
+                    theta.sin(),
+                    -theta.cos() * gamma.cos(),
+                    theta.cos() * gamma.sin(),
+                );
+                let n = glam::DVec3::new(0.0, 1.0, 0.0);
+                let cos_i = -d.dot(n);
+                let k = 1.0 / eta;
+                let t = d * k + n * (k * cos_i - (1.0 - k * k * (1.0 - cos_i * cos_i)).sqrt());
+                let cos_theta_t = (1.0 - (theta.sin() / eta).powi(2)).sqrt();
+                let sin_gamma_t = theta.cos() * gamma.sin() / (eta * cos_theta_t);
+                let split = cos_theta_t * (1.0 - sin_gamma_t * sin_gamma_t).sqrt();
+                assert!((-t.y - split).abs() < 1e-15, "theta {theta} gamma {gamma}");
+            }
+        }
+    }
+
+    proptest::proptest! {
+        /// Over the whole domain (cosines in [0, 1], eta in (1, 3]) the reflectance is in
+        /// [0, 1], in both precisions.
+        #[test]
+        fn fresnel_of_cosines_is_a_reflectance(
+            cos_i in 0.0..=1.0_f64,
+            cos_t in 0.0..=1.0_f64,
+            eta in 1.000001..=3.0_f64,
+        ) {
+            let r = fresnel_of_cosines(cos_i, cos_t, eta);
+            proptest::prop_assert!((0.0..=1.0).contains(&r), "{r}");
+            let r32 = fresnel_of_cosines(cos_i as f32, cos_t as f32, eta as f32);
+            proptest::prop_assert!((0.0..=1.0).contains(&r32), "{r32}");
+        }
     }
 
     #[test]

@@ -1,6 +1,7 @@
-use super::path::{entry, Refraction};
+use super::path::Refraction;
 use crate::absorption::PathLength;
-use crate::real::{Real, ShaderFunction, TINY};
+use crate::fresnel::fresnel_from_outside;
+use crate::real::{safe_sqrt, Real, ShaderFunction, TINY};
 
 /// Number of attenuations the Chiang model sums: the lobes R, TT and TRT **and** the residual
 /// (p >= 3), which is not a lobe of its own but all higher orders together.
@@ -29,8 +30,9 @@ pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES_WITH_RESIDUAL
             let one = R::c(1.0);
             let a0 = f;
             let a1 = (one - f).sqr() * t;
-            let a2 = a1 * f * t;
-            let a3 = a2 * f * t / (one - f * t).max(TINY.get());
+            let ft = f * t;
+            let a2 = a1 * ft;
+            let a3 = a2 * ft / (one - ft).max(TINY.get());
             [a0, a1, a2, a3]
         },
     )
@@ -41,7 +43,8 @@ pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES_WITH_RESIDUAL
 /// at the true angle of incidence, cos = cos(theta_o) cos(gamma_o), gamma_o = asin h
 /// ([`crate::fresnel::fresnel_from_outside`]).
 pub fn attenuations<R: Real>(cos_theta_o: R, eta: R, h: R, t: R) -> [R; LOBES_WITH_RESIDUAL] {
-    let (_, fresnel) = entry(cos_theta_o, h, eta, R::c(1.0) / eta);
+    let cos_gamma_o = safe_sqrt(R::c(1.0) - h * h);
+    let fresnel = fresnel_from_outside(cos_theta_o * cos_gamma_o, eta, R::c(1.0) / eta);
     attenuations_from_fresnel(fresnel, t)
 }
 

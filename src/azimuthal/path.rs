@@ -6,7 +6,7 @@
 
 use super::attenuation::{attenuations_from_fresnel, LOBES_WITH_RESIDUAL};
 use crate::absorption::{segment_length, PathLength};
-use crate::fresnel::fresnel_from_outside;
+use crate::fresnel::fresnel_of_cosines;
 use crate::real::{safe_sqrt, Real, ShaderFunction};
 
 /// Refraction into a fibre of relative index `eta` of a ray inclined at theta to its normal
@@ -86,7 +86,14 @@ impl<R: Real> Refraction<R> {
                 let h = h.clamp(-one, one);
                 let sin_gamma_t = self.sin_gamma_t(h);
                 let cos_gamma_t = safe_sqrt(one - sin_gamma_t * sin_gamma_t);
-                let (cos_gamma_o, fresnel) = entry(self.cos_theta, h, self.eta, self.inv_eta);
+                let cos_gamma_o = safe_sqrt(one - h * h);
+                // The cosines of the incident and refracted directions to the surface normal:
+                // the normal components of the Bravais split (Marschner et al. 2003, section 3).
+                let fresnel = fresnel_of_cosines(
+                    self.cos_theta * cos_gamma_o,
+                    self.cos_theta_t * cos_gamma_t,
+                    self.eta,
+                );
                 [
                     h.asin_with_cos(cos_gamma_o),
                     sin_gamma_t.asin_with_cos(cos_gamma_t),
@@ -118,16 +125,4 @@ impl<R: Real> FibrePath<R> {
     pub fn attenuations(&self, sigma_a: R) -> [R; LOBES_WITH_RESIDUAL] {
         attenuations_from_fresnel(self.fresnel, self.transmittance(sigma_a))
     }
-}
-
-/// cos(gamma_o) and the Fresnel reflectance at the entry point of the ray inclined at theta
-/// (cosine `cos_theta`) entering at offset `h` in [-1, 1]: the true angle of incidence has
-/// cosine `cos(theta) cos(gamma_o)`, `cos gamma_o = sqrt(1 - h^2)`.
-#[inline(always)]
-pub(super) fn entry<R: Real>(cos_theta: R, h: R, eta: R, inv_eta: R) -> (R, R) {
-    let cos_gamma_o = safe_sqrt(R::c(1.0) - h * h);
-    (
-        cos_gamma_o,
-        fresnel_from_outside(cos_theta * cos_gamma_o, eta, inv_eta),
-    )
 }

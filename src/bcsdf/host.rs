@@ -257,7 +257,7 @@ mod tests {
     /// Every instruction set this CPU runs, against `f64` and scalar `f32` on 100k random
     /// samples and the hard cases, with the bounds of the `wide` lanes
     /// (`batch_matches_scalar_and_reference`). Measured on the AMD EPYC (Zen 4) development
-    /// machine, default build: against f64 7.04e-5 with AVX-512 and AVX2, 7.03e-5 on the
+    /// machine, default build: against f64 7.13e-5 with AVX-512 and AVX2, 7.12e-5 on the
     /// baseline, all at the same sample (the `1 - h^2` of single precision at |h| -> 1);
     /// against scalar f32 8.58e-6 on every set.
     #[test]

@@ -21,8 +21,9 @@ pub fn deon_lobe<R: Real>(v: R, sin_i: R, cos_i: R, sin_o: R, cos_o: R) -> R {
 /// `M = scale exp(shift - (1 - cos(theta_i + theta_o)) / v) / (v (1 - e^(-2/v)))`,
 ///
 /// whose exponent is never positive. The cancellation in `1 - cos(theta_i + theta_o)` near the
-/// peak is avoided by writing it as `sin^2 / (1 + cos)` there. One exponential, one square root
-/// and one division per evaluation in single precision.
+/// peak is avoided by writing it as `sin^2 / (1 + |cos|) + (|cos| - cos)`, which is
+/// `sin^2 / (1 + cos)` where cos > 0 and `1 - cos` elsewhere, without a select. One exponential,
+/// one square root and one division per evaluation in single precision.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DeonLobe<R> {
     /// 1 / v.
@@ -74,11 +75,11 @@ impl<R: Real> DeonLobe<R> {
                 let one = R::c(1.0);
                 let cos_sum = cos_i * cos_o - sin_i * sin_o;
                 let sin_sum = sin_i * cos_o + cos_i * sin_o;
-                let one_minus_cos = R::select(
-                    R::c(0.0).lt(cos_sum),
-                    sin_sum * sin_sum / (one + cos_sum.max(R::c(0.0))),
-                    one - cos_sum,
-                );
+                // 1 - cos = sin^2 / (1 + |cos|) + (|cos| - cos): for cos > 0 the first term
+                // alone, free of the cancellation of 1 - cos near 0; for cos <= 0 it is
+                // 1 - |cos| and the second term adds 2 |cos|. No select.
+                let abs_cos = cos_sum.abs();
+                let one_minus_cos = sin_sum * sin_sum / (one + abs_cos) + (abs_cos - cos_sum);
                 let (scale, shift) = form.i0e_split(cos_i * cos_o * self.inv_v);
                 [self.norm * scale * (shift - one_minus_cos * self.inv_v).exp_of_nonpositive()]
             },

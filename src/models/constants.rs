@@ -91,7 +91,7 @@ pub const GERARD_ABSORPTION_K_TT: [f64; 4] = [
 /// - trt.chord.theta0: refit (k = 3.5757e0): RMS 6.402e-4, max 1.191e-3; Gerard eq. 13, 11/2 (k = 5.5000e0): RMS 7.191e-2, max 1.562e-1; Gerard eq. 8 printed, 8(1-3/(2eta^2)) (k = 3.0052e0): RMS 3.387e-2, max 6.447e-2; eq. 8 corrected, 8(1-3/(4eta^2)) (k = 5.5026e0): RMS 7.198e-2, max 1.563e-1.
 /// - trt.chord.averaged: refit (k = 4.1177e0): RMS 1.363e-3, max 2.734e-3; Gerard eq. 13, 11/2 (k = 5.5000e0): RMS 4.669e-2, max 1.040e-1; Gerard eq. 8 printed, 8(1-3/(2eta^2)) (k = 3.0052e0): RMS 5.907e-2, max 1.165e-1; eq. 8 corrected, 8(1-3/(4eta^2)) (k = 5.5026e0): RMS 4.676e-2, max 1.042e-1.
 pub const GERARD_ABSORPTION_K_TRT: [f64; 4] = [
-    6.36811190e0, 7.65210790e0, 3.57567860e0, 4.11766493e0,
+    6.36811189e0, 7.65210790e0, 3.57567860e0, 4.11766493e0,
 ];
 
 /// `eta' ~ a / cos theta_d + b cos theta_d` (Karis 2016 (UE4 HairBsdf.ush)), refitted.

@@ -114,47 +114,66 @@ const EXP_TAYLOR: [f32; 6] = [
     1.0 / 2.0,
 ];
 
-/// P of `e^f = 1 + f + f^2 P(f)` of degree 6 in all, highest coefficient first: the minimax fit
-/// of relative error on |f| <= ln 2 / 2 (Lawson's iteration, in `f64`), 3.9e-9 with the
-/// coefficients rounded to `f32`, so `f32` rounding dominates. One multiply-add fewer than
-/// [`EXP_TAYLOR`]; used where f stays in that interval ([`lean_exp_of_nonpositive`]).
-const EXP_MINIMAX: [f32; 5] = [
-    0.001_381_459_6,
-    0.008_368_705,
+/// `e^f` of degree 6, highest coefficient first (the last two are exactly 1): the minimax fit
+/// of relative error on |f| <= ln 2 / 2 (Lawson's iteration, in `f64`), 3.1e-9 with the
+/// coefficients rounded to `f32`, so `f32` rounding dominates. Evaluated by Horner's rule in
+/// full, six multiply-adds; used where f stays in that interval ([`lean_exp_of_nonpositive`]).
+const EXP_MINIMAX: [f32; 7] = [
+    0.001_381_461_3,
+    0.008_368_71,
     0.041_668_39,
     0.166_665_21,
     0.499_999_94,
+    1.0,
+    1.0,
 ];
 
 /// Below this argument `f32::exp` is subnormal or 0.
 const LOWEST_EXP_ARGUMENT: f32 = -87.336_54;
 
+/// `2^23 + 127`: a float in [2^23, 2^24) (where the spacing of floats is 1) whose low bits,
+/// after an integer r in [-126, 127] is added to it, are the biased exponent `r + 127` of 2^r.
+const EXPONENT_BIAS_MAGIC: f32 = 8_388_608.0 + 127.0;
+
 /// [`lean_exp`] for arguments `x <= 0` ([`Real::exp_of_nonpositive`]): clamped below at
 /// -87.34 (`vmaxps` also turns NaN into the clamp), no edge selects, and the degree-6
-/// [`EXP_MINIMAX`] (r is never capped here, so |f| <= ln 2 / 2). Measured on 4 million
-/// arguments evenly spaced on [-87.33, 0] against `f64`: relative error at most 8.0e-8 (8.5e-8
-/// for [`lean_exp`]'s degree 7).
+/// [`EXP_MINIMAX`] (r is never capped here, so |f| <= ln 2 / 2). The rounding of c log2(e) to
+/// the integer r and the biased exponent of 2^r come from one multiply-add: `c log2(e) +
+/// EXPONENT_BIAS_MAGIC`, rounded once, holds r + 127 in its low bits, and r is that minus the
+/// constant (exact). Measured on 4 million arguments evenly spaced on [-87.33, 0] against
+/// `f64`: relative error at most 9.6e-8 (8.5e-8 for [`lean_exp`]'s degree 7).
 macro_rules! lean_exp_of_nonpositive {
     ($t:ident, $x:expr) => {{
         let c = $x.fast_max($t::splat(LOWEST_EXP_ARGUMENT));
-        let r = (c * $t::LOG2_E).round_ties_even();
-        exp_reduced!($t, c, r, EXP_MINIMAX)
+        let magic = $t::splat(EXPONENT_BIAS_MAGIC);
+        let biased = c.mul_add($t::LOG2_E, magic);
+        let f = cody_waite_reduced!($t, c, biased - magic);
+        horner_highest_first!($t, f, EXP_MINIMAX) * ExponentField::shifted_into_exponent(biased)
+    }};
+}
+
+/// `f = c - r ln 2` for an integer `r` near c log2(e), with ln 2 split in two (Cody and Waite;
+/// Cephes' constants) so that `r ln2_hi` is exact.
+macro_rules! cody_waite_reduced {
+    ($t:ident, $c:expr, $r:expr) => {{
+        let (c, r): ($t, $t) = ($c, $r);
+        let f = r.mul_neg_add($t::splat(0.693_359_4), c);
+        r.mul_neg_add($t::splat(-2.121_944_4e-4), f)
     }};
 }
 
 /// `e^c` for `c` in [-87.34, 88.72] and `r` = c log2(e) rounded (at most 127): Cephes' range
 /// reduction `c = r ln 2 + f`, `e^f = 1 + f + f^2 P(f)` with the coefficients `$p` of P
-/// ([`EXP_TAYLOR`] or [`EXP_MINIMAX`]), times `2^r` by one exponent-field shift.
+/// ([`EXP_TAYLOR`]), times `2^r` by one exponent-field shift.
 macro_rules! exp_reduced {
     ($t:ident, $c:expr, $r:expr, $p:expr) => {{
         let (c, r): ($t, $t) = ($c, $r);
-        let f = r.mul_neg_add($t::splat(0.693_359_4), c);
-        let f = r.mul_neg_add($t::splat(-2.121_944_4e-4), f);
+        let f = cody_waite_reduced!($t, c, r);
         // e^f = 1 + f + f^2 P(f).
         let z = horner_highest_first!($t, f, $p);
         let z = z.mul_add(f * f, f) + $t::ONE;
         // 2^r for integer r in [-126, 127]: the biased exponent r + 127 shifted into place.
-        let scale = ExponentField::shifted_into_exponent(r + $t::splat(8_388_608.0 + 127.0));
+        let scale = ExponentField::shifted_into_exponent(r + $t::splat(EXPONENT_BIAS_MAGIC));
         z * scale
     }};
 }

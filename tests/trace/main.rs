@@ -22,10 +22,10 @@ use hairmath::bcsdf::{
     ChiangHair, ChiangUniforms, FarFieldRule, Model, Query, RandomNumbers, SampledBcsdf,
     UniformBlock, UniformsIn,
 };
-use hairmath::fresnel::fresnel_from_outside;
 use hairmath::fresnel::{
     bravais_eta_parallel, bravais_eta_perpendicular, fresnel_dielectric, fresnel_schlick,
 };
+use hairmath::fresnel::{fresnel_from_outside, fresnel_of_cosines};
 use hairmath::geometry::{
     azimuth_between, fibre_angles, fibre_frame, local_direction, local_directions,
     local_fibre_angles, local_sin_cos_theta, sin_cos_theta, FibreAngles, V3,
@@ -385,6 +385,12 @@ fn chiang_rows() -> Vec<Vec<f32>> {
 /// `1 / x`.
 fn recip<R: Real>(x: R) -> R {
     R::c(1.0) / x
+}
+/// The cosine of the transmitted direction by Snell's law, for incidence from outside at
+/// cosine `cos_i` into relative index `eta >= 1`.
+fn snell_cos_t<R: Real>(cos_i: R, eta: R) -> R {
+    let sin2_t = (R::c(1.0) - cos_i * cos_i) * recip(eta * eta);
+    safe_sqrt(R::c(1.0) - sin2_t)
 }
 /// Constants of the working precision.
 fn consts<R: Real>(values: &[f64]) -> Vec<R> {
@@ -774,6 +780,12 @@ traced_tests! {
         let inputs = scalars(&[UNIT, ETA]);
         case!("fresnel_from_outside", inputs, |x| {
             vec![fresnel_from_outside(x[0], x[1], recip(x[1]))]
+        });
+    }
+    fresnel_of_cosines_ ["fresnel_of_cosines"] {
+        let inputs = scalars(&[UNIT, ETA]);
+        case!("fresnel_of_cosines", inputs, |x| {
+            vec![fresnel_of_cosines(x[0], snell_cos_t(x[0], x[1]), x[1])]
         });
     }
     fresnel_schlick_ ["fresnel_schlick"] {
