@@ -57,8 +57,10 @@ pub fn fresnel_from_outside<R: Real>(cos_i: R, eta: R, inv_eta: R) -> R {
 
 /// [`fresnel_from_outside`] from both cosines, for callers that know the cosine `cos_t` of the
 /// transmitted direction already (a fibre's path: `cos theta_t cos gamma_t`, the Bravais split of
-/// the refracted direction), so Snell's law costs no square root here. `cos_i` and `cos_t` in
-/// [0, 1], `eta >= 1`; the result is in [0, 1].
+/// the refracted direction), so Snell's law costs no square root here. `cos_i` in [0, 1],
+/// `cos_t` in (0, 1] (Snell's law gives `cos_t >= sqrt(1 - 1/eta^2) > 0`), `eta >= 1`; the
+/// result is in [0, 1] (on the CPU also at `cos_i = cos_t = 0`, where the clamp to 1 takes the
+/// 0 / 0 of the grazing limit).
 #[inline(always)]
 pub fn fresnel_of_cosines<R: Real>(cos_i: R, cos_t: R, eta: R) -> R {
     const FUNCTION: ShaderFunction = crate::shader_function!(
@@ -202,6 +204,9 @@ mod tests {
                 );
             }
         }
+        // Both cosines 0, the grazing limit: total reflection, not 0 / 0.
+        assert_eq!(fresnel_of_cosines(0.0_f64, 0.0, 1.55), 1.0);
+        assert_eq!(fresnel_of_cosines(0.0_f32, 0.0, 1.55), 1.0);
         let eta = 1.55_f64;
         for &theta in &[0.0_f64, 0.3, 0.9, 1.4, 1.57] {
             for &gamma in &[0.0_f64, 0.1, 0.6, 1.2, 1.57] {
