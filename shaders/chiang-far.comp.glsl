@@ -50,6 +50,11 @@ struct Attenuations {
     float trt;
     float residual;
 };
+struct ExitAzimuths {
+    float r;
+    float tt;
+    float trt;
+};
 struct TrimmedLogistics {
     float r;
     float tt;
@@ -71,14 +76,6 @@ struct FibreLocalDirections {
     vec3 wo;
 };
 const ChiangUniforms uniforms = ChiangUniforms(0.08461118, 0.021152794, 0.3384447, 11.818769, 47.275078, 2.9546924, 11.818769, 47.275078, 2.9627328, 0.117159806, 8.535351, 1.0, 8.535351, 0.034899496, 0.99939084, 0.06975647, 0.9975641, 0.1391731, 0.99026805, 1.55, 0.6451613, vec3(0.5447, 0.9061, 1.781));
-// 1e-30, the floor that keeps a denominator, a length or a width positive
-const float TINY = 1e-30;
-// pi
-const float PI = 3.1415927;
-// 2 pi
-const float TWO_PI = 6.2831855;
-// 1 / (2 pi), the uniform density over a full turn
-const float INV_TWO_PI = 0.15915494;
 // 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
 const float BESSEL_I0_SWITCH = 3.75;
 // 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
@@ -87,6 +84,14 @@ const float BESSEL_I0_INV_SWITCH = 0.26666668;
 const float BESSEL_I0_NEAR[7] = float[7](1.0, 3.5156229, 3.0899425, 1.2067492, 0.2659732, 0.0360768, 0.0045813);
 // Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
 const float BESSEL_I0_FAR[9] = float[9](0.3989423, 0.01328592, 0.00225319, -0.00157565, 0.00916281, -0.02057706, 0.02635537, -0.01647633, 0.00392377);
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const float TINY = 1e-30;
+// pi
+const float PI = 3.1415927;
+// 1 / (2 pi), the uniform density over a full turn
+const float INV_TWO_PI = 0.15915494;
+// 2 pi
+const float TWO_PI = 6.2831855;
 const FarFieldNodePairElement FAR_FIELD_OFFSET_PAIRS[32] = FarFieldNodePairElement[32](FarFieldNodePairElement(0.9999994, 1.5289318e-6), FarFieldNodePairElement(0.9999835, 1.872458e-5), FarFieldNodePairElement(0.99990034, 7.211129e-5), FarFieldNodePairElement(0.99965745, 0.00018185156), FarFieldNodePairElement(0.9991224, 0.0003673992), FarFieldNodePairElement(0.99812496, 0.0006472144), FarFieldNodePairElement(0.99645925, 0.0010384569), FarFieldNodePairElement(0.9938865, 0.0015566545), FarFieldNodePairElement(0.9901389, 0.00221535), FarFieldNodePairElement(0.9849239, 0.0030257301), FarFieldNodePairElement(0.9779291, 0.003996244), FarFieldNodePairElement(0.9688285, 0.005132225), FarFieldNodePairElement(0.9572886, 0.006435525), FarFieldNodePairElement(0.94297606, 0.007904187), FarFieldNodePairElement(0.92556554, 0.009532163), FarFieldNodePairElement(0.904748, 0.011309116), FarFieldNodePairElement(0.8802395, 0.013220307), FarFieldNodePairElement(0.85178995, 0.015246595), FarFieldNodePairElement(0.81919193, 0.017364576), FarFieldNodePairElement(0.78228873, 0.019546852), FarFieldNodePairElement(0.74098223, 0.021762462), FarFieldNodePairElement(0.69523925, 0.023977457), FarFieldNodePairElement(0.6450969, 0.02615561), FarFieldNodePairElement(0.5906664, 0.028259275), FarFieldNodePairElement(0.5321349, 0.030250335), FarFieldNodePairElement(0.46976525, 0.032091226), FarFieldNodePairElement(0.4038941, 0.033746015), FarFieldNodePairElement(0.33492747, 0.035181463), FarFieldNodePairElement(0.26333427, 0.036368046), FarFieldNodePairElement(0.18963791, 0.03728089), FarFieldNodePairElement(0.11440627, 0.037900586), FarFieldNodePairElement(0.038240023, 0.03821382));
 
 layout(std430, binding = 0) readonly buffer type_6_block_0Compute { float _group_0_binding_0_cs[]; };
@@ -96,32 +101,46 @@ layout(std430, binding = 1) buffer type_6_block_1Compute { float _group_0_bindin
 
 // hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
-    float _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
-    float _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e26, ((0.0 < (abs(_e26) + abs(_e29))) ? _e29 : 1.0)));
+    float _e27 = ((wi_in.y * wo_in.z) + -((wi_in.z * wo_in.y)));
+    float _e30 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e27, ((0.0 < (abs(_e27) + abs(_e30))) ? _e30 : 1.0)));
+}
+
+// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
+float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
+    float _e7 = (cos_i * cos_o);
+    float _e10 = ((-(sin_i) * sin_o) + _e7);
+    float _e13 = ((sin_i * cos_o) + (cos_i * sin_o));
+    float _e14 = abs(_e10);
+    float _e23 = max((_e7 * inv_variance_r), 0.0);
+    bool _e24 = (_e23 < BESSEL_I0_SWITCH);
+    float _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    float _e28 = (_e27 * _e27);
+    float _e56 = (1.0 / max(_e23, BESSEL_I0_SWITCH));
+    float _e57 = (BESSEL_I0_SWITCH * _e56);
+    return ((lobe_norm_r * (_e24 ? ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)))) * exp(((-((((_e13 * _e13) / (1.0 + _e14)) + (_e14 - _e10))) * inv_variance_r) + (_e24 ? -(_e23) : 0.0))));
 }
 
 // hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
 float fresnel_of_cosines(float cos_i, float cos_t, float eta) {
-    float _e3 = (eta * cos_i);
-    float _e4 = (_e3 - cos_t);
-    float _e5 = (_e3 + cos_t);
-    float _e6 = (eta * cos_t);
-    float _e7 = (cos_i - _e6);
-    float _e8 = (cos_i + _e6);
-    float _e9 = (_e5 * _e5);
-    float _e10 = (_e8 * _e8);
-    return min(((((_e4 * _e4) * _e10) + ((_e7 * _e7) * _e9)) / ((2.0 * _e9) * _e10)), 1.0);
+    float _e4 = (eta * cos_i);
+    float _e5 = (_e4 + -(cos_t));
+    float _e6 = (_e4 + cos_t);
+    float _e9 = ((-(eta) * cos_t) + cos_i);
+    float _e11 = ((eta * cos_t) + cos_i);
+    float _e12 = (_e6 * _e6);
+    float _e13 = (_e11 * _e11);
+    return min(((((_e9 * _e9) * _e12) + ((_e5 * _e5) * _e13)) / ((2.0 * _e12) * _e13)), 1.0);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
 FibrePath fibre_path(float h, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float cos_theta_t, float eta) {
     float _e9 = min(max(h, -(1.0)), 1.0);
     float _e12 = (((_e9 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
-    float _e17 = sqrt(max((1.0 - (_e12 * _e12)), 0.0));
-    float _e21 = sqrt(max((1.0 - (_e9 * _e9)), 0.0));
-    float _e24 = fresnel_of_cosines((cos_theta_o * _e21), (cos_theta_t * _e17), eta);
-    return FibrePath(atan(_e9, _e21), atan(_e12, _e17), ((2.0 * _e17) * inv_cos_theta_t), _e24);
+    float _e18 = sqrt(max(((-(_e12) * _e12) + 1.0), 0.0));
+    float _e23 = sqrt(max(((1.0 - _e9) * (1.0 + _e9)), 0.0));
+    float _e26 = fresnel_of_cosines((cos_theta_o * _e23), (cos_theta_t * _e18), eta);
+    return FibrePath(atan(_e9, _e23), atan(_e12, _e18), ((2.0 * _e18) * inv_cos_theta_t), _e26);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
@@ -133,9 +152,14 @@ Attenuations attenuations(float fresnel, float transmittance) {
     return Attenuations(fresnel, _e5, _e7, ((_e7 * _e6) / max((1.0 - _e6), TINY)));
 }
 
-// hairmath::azimuthal::exit_angle::exit_angle -- Marschner et al. 2003, eq. 3
-float exit_angle(float p, float gamma_i, float gamma_t) {
-    return ((((2.0 * p) * gamma_t) - (2.0 * gamma_i)) + (p * PI));
+// hairmath::azimuthal::exit_angle::exit_azimuths -- Marschner et al. 2003, eq. 3: phi - Phi(p) for p = 0, 1, 2, wrapped into [-pi, pi]
+ExitAzimuths exit_azimuths(float phi, float gamma_i, float gamma_t) {
+    float _e5 = ((2.0 * gamma_i) + phi);
+    float _e8 = ((2.0 * gamma_t) + PI);
+    float _e9 = (_e5 - _e8);
+    float _e12 = ((-2.0 * _e8) + _e5);
+    float _e19 = -(TWO_PI);
+    return ExitAzimuths(((floor(((_e5 * INV_TWO_PI) + 0.5)) * _e19) + _e5), ((floor(((_e9 * INV_TWO_PI) + 0.5)) * _e19) + _e9), ((floor(((_e12 * INV_TWO_PI) + 0.5)) * _e19) + _e12));
 }
 
 // hairmath::bcsdf::chiang::trimmed_logistics -- Chiang et al. 2016, eq. 13
@@ -155,42 +179,15 @@ FarFieldNodePair far_field_node_pair(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 re
     Attenuations _e36 = attenuations(_e27.fresnel, exp((-(sigma_a.x) * _e27.segment_length)));
     Attenuations _e45 = attenuations(_e27.fresnel, exp((-(sigma_a.y) * _e27.segment_length)));
     Attenuations _e54 = attenuations(_e27.fresnel, exp((-(sigma_a.z) * _e27.segment_length)));
-    float _e60 = exit_angle(0.0, _e27.gamma_o, _e27.gamma_t);
-    float _e61 = (phi - _e60);
-    float _e71 = exit_angle(1.0, _e27.gamma_o, _e27.gamma_t);
-    float _e72 = (phi - _e71);
-    float _e79 = exit_angle(2.0, _e27.gamma_o, _e27.gamma_t);
-    float _e80 = (phi - _e79);
-    TrimmedLogistics _e86 = trimmed_logistics((_e61 - (TWO_PI * floor(((_e61 + PI) * INV_TWO_PI)))), (_e72 - (TWO_PI * floor(((_e72 + PI) * INV_TWO_PI)))), (_e80 - (TWO_PI * floor(((_e80 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    float _e90 = -(_e27.gamma_o);
-    float _e91 = -(_e27.gamma_t);
-    float _e92 = exit_angle(0.0, _e90, _e91);
-    float _e93 = (phi - _e92);
-    float _e99 = exit_angle(1.0, _e90, _e91);
-    float _e100 = (phi - _e99);
-    float _e106 = exit_angle(2.0, _e90, _e91);
-    float _e107 = (phi - _e106);
-    TrimmedLogistics _e113 = trimmed_logistics((_e93 - (TWO_PI * floor(((_e93 + PI) * INV_TWO_PI)))), (_e100 - (TWO_PI * floor(((_e100 + PI) * INV_TWO_PI)))), (_e107 - (TWO_PI * floor(((_e107 + PI) * INV_TWO_PI)))), logistic_inv_scale, logistic_norm);
-    float _e117 = (_e86.r + _e113.r);
-    float _e118 = (_e86.tt + _e113.tt);
-    float _e119 = (_e86.trt + _e113.trt);
-    float _e120 = (INV_TWO_PI + INV_TWO_PI);
-    return FarFieldNodePair((r_in + (weight * (vec3(_e36.r, _e45.r, _e54.r) * _e117))), (tt_in + (weight * (vec3(_e36.tt, _e45.tt, _e54.tt) * _e118))), (trt_in + (weight * (vec3(_e36.trt, _e45.trt, _e54.trt) * _e119))), (residual_in + (weight * (vec3(_e36.residual, _e45.residual, _e54.residual) * _e120))));
-}
-
-// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
-float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
-    float _e7 = (cos_i * cos_o);
-    float _e9 = (_e7 - (sin_i * sin_o));
-    float _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
-    float _e13 = abs(_e9);
-    float _e22 = max((_e7 * inv_variance_r), 0.0);
-    bool _e23 = (_e22 < BESSEL_I0_SWITCH);
-    float _e26 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    float _e27 = (_e26 * _e26);
-    float _e55 = (1.0 / max(_e22, BESSEL_I0_SWITCH));
-    float _e56 = (BESSEL_I0_SWITCH * _e55);
-    return ((lobe_norm_r * (_e23 ? ((((((((((((BESSEL_I0_NEAR[6] * _e27) + BESSEL_I0_NEAR[5]) * _e27) + BESSEL_I0_NEAR[4]) * _e27) + BESSEL_I0_NEAR[3]) * _e27) + BESSEL_I0_NEAR[2]) * _e27) + BESSEL_I0_NEAR[1]) * _e27) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e56) + BESSEL_I0_FAR[7]) * _e56) + BESSEL_I0_FAR[6]) * _e56) + BESSEL_I0_FAR[5]) * _e56) + BESSEL_I0_FAR[4]) * _e56) + BESSEL_I0_FAR[3]) * _e56) + BESSEL_I0_FAR[2]) * _e56) + BESSEL_I0_FAR[1]) * _e56) + BESSEL_I0_FAR[0]) * sqrt(_e55)))) * exp(((_e23 ? -(_e22) : 0.0) - ((((_e12 * _e12) / (1.0 + _e13)) + (_e13 - _e9)) * inv_variance_r))));
+    ExitAzimuths _e59 = exit_azimuths(phi, _e27.gamma_o, _e27.gamma_t);
+    TrimmedLogistics _e63 = trimmed_logistics(_e59.r, _e59.tt, _e59.trt, logistic_inv_scale, logistic_norm);
+    ExitAzimuths _e70 = exit_azimuths(phi, -(_e27.gamma_o), -(_e27.gamma_t));
+    TrimmedLogistics _e74 = trimmed_logistics(_e70.r, _e70.tt, _e70.trt, logistic_inv_scale, logistic_norm);
+    float _e78 = (_e63.r + _e74.r);
+    float _e79 = (_e63.tt + _e74.tt);
+    float _e80 = (_e63.trt + _e74.trt);
+    float _e81 = (INV_TWO_PI + INV_TWO_PI);
+    return FarFieldNodePair((r_in + (weight * (vec3(_e36.r, _e45.r, _e54.r) * _e78))), (tt_in + (weight * (vec3(_e36.tt, _e45.tt, _e54.tt) * _e79))), (trt_in + (weight * (vec3(_e36.trt, _e45.trt, _e54.trt) * _e80))), (residual_in + (weight * (vec3(_e36.residual, _e45.residual, _e54.residual) * _e81))));
 }
 
 // hair_bcsdf: `hairmath eval --model chiang-far`, the far field of Chiang et al. 2016: S(wi, wo) averaged over h uniform in [-1, 1], with a fixed Gauss-Legendre rule over h or the adaptive reference
@@ -203,8 +200,13 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     uint k = 0u;
     FibreAngles _e30 = fibre_angles(wi, wo);
     float phi = -(_e30.phi);
-    float _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
-    float cos_theta_t = sqrt(max((1.0 - (_e37 * _e37)), 0.0));
+    float _e37 = -(uniforms.sin_2_alpha);
+    float _e46 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e37)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) + -((_e30.sin_theta_o * _e37)))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    float _e55 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) + -((_e30.sin_theta_o * uniforms.sin_alpha)))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    float _e64 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) + -((_e30.sin_theta_o * uniforms.sin_4_alpha)))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    float _e65 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    float _e66 = (_e30.sin_theta_o * uniforms.inv_eta);
+    float cos_theta_t = sqrt(max(((-(_e66) * _e66) + 1.0), 0.0));
     float inv_cos_theta_t = (1.0 / cos_theta_t);
     r = vec3(0.0);
     tt = vec3(0.0);
@@ -213,36 +215,31 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e71 = k;
-            k = (_e71 + 1u);
+            uint _e101 = k;
+            k = (_e101 + 1u);
         }
         loop_init = false;
-        uint _e54 = k;
-        if ((_e54 < 32u)) {
+        uint _e84 = k;
+        if ((_e84 < 32u)) {
         } else {
             break;
         }
-        uint _e58 = k;
-        vec3 _e60 = r;
-        vec3 _e61 = tt;
-        vec3 _e62 = trt;
-        vec3 _e63 = residual;
-        FarFieldNodePair _e66 = far_field_node_pair(_e60, _e61, _e62, _e63, FAR_FIELD_OFFSET_PAIRS[_e58].h, FAR_FIELD_OFFSET_PAIRS[_e58].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
-        r = _e66.r;
-        tt = _e66.tt;
-        trt = _e66.trt;
-        residual = _e66.residual;
+        uint _e88 = k;
+        vec3 _e90 = r;
+        vec3 _e91 = tt;
+        vec3 _e92 = trt;
+        vec3 _e93 = residual;
+        FarFieldNodePair _e96 = far_field_node_pair(_e90, _e91, _e92, _e93, FAR_FIELD_OFFSET_PAIRS[_e88].h, FAR_FIELD_OFFSET_PAIRS[_e88].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        r = _e96.r;
+        tt = _e96.tt;
+        trt = _e96.trt;
+        residual = _e96.residual;
     }
-    vec3 _e74 = r;
-    vec3 _e75 = tt;
-    vec3 _e76 = trt;
-    vec3 _e77 = residual;
-    float _e90 = -(uniforms.sin_2_alpha);
-    float _e98 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e90)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) - (_e30.sin_theta_o * _e90))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
-    float _e106 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
-    float _e114 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    float _e115 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    return ((((vec3(0.0) + (_e98 * _e74)) + (_e106 * _e75)) + (_e114 * _e76)) + (_e115 * _e77));
+    vec3 _e104 = r;
+    vec3 _e105 = tt;
+    vec3 _e106 = trt;
+    vec3 _e107 = residual;
+    return ((_e65 * _e107) + ((_e64 * _e106) + ((_e55 * _e105) + (_e46 * _e104))));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -46,6 +46,11 @@ struct Attenuations {
     float trt;
     float residual;
 };
+struct ExitAzimuths {
+    float r;
+    float tt;
+    float trt;
+};
 struct TrimmedLogistics {
     float r;
     float tt;
@@ -61,14 +66,6 @@ struct FibreLocalDirections {
     vec3 wo;
 };
 const ChiangUniforms uniforms = ChiangUniforms(0.08461118, 0.021152794, 0.3384447, 11.818769, 47.275078, 2.9546924, 11.818769, 47.275078, 2.9627328, 0.117159806, 8.535351, 1.0, 8.535351, 0.034899496, 0.99939084, 0.06975647, 0.9975641, 0.1391731, 0.99026805, 1.55, 0.6451613, vec3(0.5447, 0.9061, 1.781));
-// 1e-30, the floor that keeps a denominator, a length or a width positive
-const float TINY = 1e-30;
-// pi
-const float PI = 3.1415927;
-// 2 pi
-const float TWO_PI = 6.2831855;
-// 1 / (2 pi), the uniform density over a full turn
-const float INV_TWO_PI = 0.15915494;
 // 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
 const float BESSEL_I0_SWITCH = 3.75;
 // 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
@@ -77,6 +74,14 @@ const float BESSEL_I0_INV_SWITCH = 0.26666668;
 const float BESSEL_I0_NEAR[7] = float[7](1.0, 3.5156229, 3.0899425, 1.2067492, 0.2659732, 0.0360768, 0.0045813);
 // Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
 const float BESSEL_I0_FAR[9] = float[9](0.3989423, 0.01328592, 0.00225319, -0.00157565, 0.00916281, -0.02057706, 0.02635537, -0.01647633, 0.00392377);
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const float TINY = 1e-30;
+// pi
+const float PI = 3.1415927;
+// 1 / (2 pi), the uniform density over a full turn
+const float INV_TWO_PI = 0.15915494;
+// 2 pi
+const float TWO_PI = 6.2831855;
 
 layout(std430, binding = 0) readonly buffer type_5_block_0Compute { float _group_0_binding_0_cs[]; };
 
@@ -85,32 +90,46 @@ layout(std430, binding = 1) buffer type_5_block_1Compute { float _group_0_bindin
 
 // hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
-    float _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
-    float _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e26, ((0.0 < (abs(_e26) + abs(_e29))) ? _e29 : 1.0)));
+    float _e27 = ((wi_in.y * wo_in.z) + -((wi_in.z * wo_in.y)));
+    float _e30 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e27, ((0.0 < (abs(_e27) + abs(_e30))) ? _e30 : 1.0)));
+}
+
+// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
+float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
+    float _e7 = (cos_i * cos_o);
+    float _e10 = ((-(sin_i) * sin_o) + _e7);
+    float _e13 = ((sin_i * cos_o) + (cos_i * sin_o));
+    float _e14 = abs(_e10);
+    float _e23 = max((_e7 * inv_variance_r), 0.0);
+    bool _e24 = (_e23 < BESSEL_I0_SWITCH);
+    float _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    float _e28 = (_e27 * _e27);
+    float _e56 = (1.0 / max(_e23, BESSEL_I0_SWITCH));
+    float _e57 = (BESSEL_I0_SWITCH * _e56);
+    return ((lobe_norm_r * (_e24 ? ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)))) * exp(((-((((_e13 * _e13) / (1.0 + _e14)) + (_e14 - _e10))) * inv_variance_r) + (_e24 ? -(_e23) : 0.0))));
 }
 
 // hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
 float fresnel_of_cosines(float cos_i, float cos_t, float eta) {
-    float _e3 = (eta * cos_i);
-    float _e4 = (_e3 - cos_t);
-    float _e5 = (_e3 + cos_t);
-    float _e6 = (eta * cos_t);
-    float _e7 = (cos_i - _e6);
-    float _e8 = (cos_i + _e6);
-    float _e9 = (_e5 * _e5);
-    float _e10 = (_e8 * _e8);
-    return min(((((_e4 * _e4) * _e10) + ((_e7 * _e7) * _e9)) / ((2.0 * _e9) * _e10)), 1.0);
+    float _e4 = (eta * cos_i);
+    float _e5 = (_e4 + -(cos_t));
+    float _e6 = (_e4 + cos_t);
+    float _e9 = ((-(eta) * cos_t) + cos_i);
+    float _e11 = ((eta * cos_t) + cos_i);
+    float _e12 = (_e6 * _e6);
+    float _e13 = (_e11 * _e11);
+    return min(((((_e9 * _e9) * _e12) + ((_e5 * _e5) * _e13)) / ((2.0 * _e12) * _e13)), 1.0);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
 FibrePath fibre_path(float h_in, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float cos_theta_t, float eta) {
     float _e9 = min(max(h_in, -(1.0)), 1.0);
     float _e12 = (((_e9 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
-    float _e17 = sqrt(max((1.0 - (_e12 * _e12)), 0.0));
-    float _e21 = sqrt(max((1.0 - (_e9 * _e9)), 0.0));
-    float _e24 = fresnel_of_cosines((cos_theta_o * _e21), (cos_theta_t * _e17), eta);
-    return FibrePath(atan(_e9, _e21), atan(_e12, _e17), ((2.0 * _e17) * inv_cos_theta_t), _e24);
+    float _e18 = sqrt(max(((-(_e12) * _e12) + 1.0), 0.0));
+    float _e23 = sqrt(max(((1.0 - _e9) * (1.0 + _e9)), 0.0));
+    float _e26 = fresnel_of_cosines((cos_theta_o * _e23), (cos_theta_t * _e18), eta);
+    return FibrePath(atan(_e9, _e23), atan(_e12, _e18), ((2.0 * _e18) * inv_cos_theta_t), _e26);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
@@ -122,9 +141,14 @@ Attenuations attenuations(float fresnel, float transmittance) {
     return Attenuations(fresnel, _e5, _e7, ((_e7 * _e6) / max((1.0 - _e6), TINY)));
 }
 
-// hairmath::azimuthal::exit_angle::exit_angle -- Marschner et al. 2003, eq. 3
-float exit_angle(float p, float gamma_i, float gamma_t) {
-    return ((((2.0 * p) * gamma_t) - (2.0 * gamma_i)) + (p * PI));
+// hairmath::azimuthal::exit_angle::exit_azimuths -- Marschner et al. 2003, eq. 3: phi - Phi(p) for p = 0, 1, 2, wrapped into [-pi, pi]
+ExitAzimuths exit_azimuths(float phi, float gamma_i, float gamma_t) {
+    float _e5 = ((2.0 * gamma_i) + phi);
+    float _e8 = ((2.0 * gamma_t) + PI);
+    float _e9 = (_e5 - _e8);
+    float _e12 = ((-2.0 * _e8) + _e5);
+    float _e19 = -(TWO_PI);
+    return ExitAzimuths(((floor(((_e5 * INV_TWO_PI) + 0.5)) * _e19) + _e5), ((floor(((_e9 * INV_TWO_PI) + 0.5)) * _e19) + _e9), ((floor(((_e12 * INV_TWO_PI) + 0.5)) * _e19) + _e12));
 }
 
 // hairmath::bcsdf::chiang::trimmed_logistics -- Chiang et al. 2016, eq. 13
@@ -138,46 +162,30 @@ TrimmedLogistics trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, 
     return TrimmedLogistics(((_e8 * logistic_norm) / (_e10 * _e10)), ((_e17 * logistic_norm) / (_e18 * _e18)), ((_e25 * logistic_norm) / (_e26 * _e26)));
 }
 
-// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
-float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
-    float _e7 = (cos_i * cos_o);
-    float _e9 = (_e7 - (sin_i * sin_o));
-    float _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
-    float _e13 = abs(_e9);
-    float _e22 = max((_e7 * inv_variance_r), 0.0);
-    bool _e23 = (_e22 < BESSEL_I0_SWITCH);
-    float _e26 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    float _e27 = (_e26 * _e26);
-    float _e55 = (1.0 / max(_e22, BESSEL_I0_SWITCH));
-    float _e56 = (BESSEL_I0_SWITCH * _e55);
-    return ((lobe_norm_r * (_e23 ? ((((((((((((BESSEL_I0_NEAR[6] * _e27) + BESSEL_I0_NEAR[5]) * _e27) + BESSEL_I0_NEAR[4]) * _e27) + BESSEL_I0_NEAR[3]) * _e27) + BESSEL_I0_NEAR[2]) * _e27) + BESSEL_I0_NEAR[1]) * _e27) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e56) + BESSEL_I0_FAR[7]) * _e56) + BESSEL_I0_FAR[6]) * _e56) + BESSEL_I0_FAR[5]) * _e56) + BESSEL_I0_FAR[4]) * _e56) + BESSEL_I0_FAR[3]) * _e56) + BESSEL_I0_FAR[2]) * _e56) + BESSEL_I0_FAR[1]) * _e56) + BESSEL_I0_FAR[0]) * sqrt(_e55)))) * exp(((_e23 ? -(_e22) : 0.0) - ((((_e12 * _e12) / (1.0 + _e13)) + (_e13 - _e9)) * inv_variance_r))));
-}
-
 // hair_bcsdf: `hairmath eval --model chiang`, Chiang et al. 2016 (pbrt-v4 HairBxDF): the near-field reference, S(wi, wo, h)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo, float h) {
     FibreAngles _e30 = fibre_angles(wi, wo);
     float phi = -(_e30.phi);
-    float _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
-    float cos_theta_t = sqrt(max((1.0 - (_e37 * _e37)), 0.0));
+    float _e37 = -(uniforms.sin_2_alpha);
+    float _e46 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e37)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) + -((_e30.sin_theta_o * _e37)))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    float _e55 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) + -((_e30.sin_theta_o * uniforms.sin_alpha)))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    float _e64 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) + -((_e30.sin_theta_o * uniforms.sin_4_alpha)))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    float _e65 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    float _e66 = (_e30.sin_theta_o * uniforms.inv_eta);
+    float cos_theta_t = sqrt(max(((-(_e66) * _e66) + 1.0), 0.0));
     float inv_cos_theta_t = (1.0 / cos_theta_t);
-    FibrePath _e45 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
-    Attenuations _e53 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.x) * _e45.segment_length)));
-    Attenuations _e61 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.y) * _e45.segment_length)));
-    Attenuations _e69 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.z) * _e45.segment_length)));
-    float _e74 = exit_angle(0.0, _e45.gamma_o, _e45.gamma_t);
-    float _e75 = (phi - _e74);
-    float _e84 = exit_angle(1.0, _e45.gamma_o, _e45.gamma_t);
-    float _e85 = (phi - _e84);
-    float _e92 = exit_angle(2.0, _e45.gamma_o, _e45.gamma_t);
-    float _e93 = (phi - _e92);
-    TrimmedLogistics _e99 = trimmed_logistics((_e75 - (TWO_PI * floor(((_e75 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), (_e93 - (TWO_PI * floor(((_e93 + PI) * INV_TWO_PI)))), uniforms.logistic_inv_scale, uniforms.logistic_norm);
-    float _e115 = -(uniforms.sin_2_alpha);
-    float _e123 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e115)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) - (_e30.sin_theta_o * _e115))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
-    float _e131 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
-    float _e139 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    float _e140 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    return ((((vec3(0.0) + (_e123 * (vec3(_e53.r, _e61.r, _e69.r) * _e99.r))) + (_e131 * (vec3(_e53.tt, _e61.tt, _e69.tt) * _e99.tt))) + (_e139 * (vec3(_e53.trt, _e61.trt, _e69.trt) * _e99.trt))) + (_e140 * (vec3(_e53.residual, _e61.residual, _e69.residual) * INV_TWO_PI)));
+    FibrePath _e75 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
+    Attenuations _e83 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.x) * _e75.segment_length)));
+    Attenuations _e91 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.y) * _e75.segment_length)));
+    Attenuations _e99 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.z) * _e75.segment_length)));
+    ExitAzimuths _e104 = exit_azimuths(phi, _e75.gamma_o, _e75.gamma_t);
+    TrimmedLogistics _e108 = trimmed_logistics(_e104.r, _e104.tt, _e104.trt, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+    float _e113 = (_e46 * _e108.r);
+    float _e114 = (_e55 * _e108.tt);
+    float _e115 = (_e64 * _e108.trt);
+    float _e116 = (_e65 * INV_TWO_PI);
+    return ((_e116 * vec3(_e83.residual, _e91.residual, _e99.residual)) + ((_e115 * vec3(_e83.trt, _e91.trt, _e99.trt)) + ((_e114 * vec3(_e83.tt, _e91.tt, _e99.tt)) + (_e113 * vec3(_e83.r, _e91.r, _e99.r)))));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -45,6 +45,12 @@ struct Attenuations {
     residual: f32,
 }
 
+struct ExitAzimuths {
+    r: f32,
+    tt: f32,
+    trt: f32,
+}
+
 struct TrimmedLogistics {
     r: f32,
     tt: f32,
@@ -63,14 +69,6 @@ struct FibreLocalDirections {
 }
 
 const uniforms: ChiangUniforms = ChiangUniforms(0.08461118f, 0.021152794f, 0.3384447f, 11.818769f, 47.275078f, 2.9546924f, 11.818769f, 47.275078f, 2.9627328f, 0.117159806f, 8.535351f, 1f, 8.535351f, 0.034899496f, 0.99939084f, 0.06975647f, 0.9975641f, 0.1391731f, 0.99026805f, 1.55f, 0.6451613f, vec3<f32>(0.5447f, 0.9061f, 1.781f));
-// 1e-30, the floor that keeps a denominator, a length or a width positive
-const TINY: f32 = 0.000000000000000000000000000001f;
-// pi
-const PI: f32 = 3.1415927f;
-// 2 pi
-const TWO_PI: f32 = 6.2831855f;
-// 1 / (2 pi), the uniform density over a full turn
-const INV_TWO_PI: f32 = 0.15915494f;
 // 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
 const BESSEL_I0_SWITCH: f32 = 3.75f;
 // 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
@@ -79,35 +77,57 @@ const BESSEL_I0_INV_SWITCH: f32 = 0.26666668f;
 const BESSEL_I0_NEAR: array<f32, 7> = array<f32, 7>(1f, 3.5156229f, 3.0899425f, 1.2067492f, 0.2659732f, 0.0360768f, 0.0045813f);
 // Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
 const BESSEL_I0_FAR: array<f32, 9> = array<f32, 9>(0.3989423f, 0.01328592f, 0.00225319f, -0.00157565f, 0.00916281f, -0.02057706f, 0.02635537f, -0.01647633f, 0.00392377f);
+// 1e-30, the floor that keeps a denominator, a length or a width positive
+const TINY: f32 = 0.000000000000000000000000000001f;
+// pi
+const PI: f32 = 3.1415927f;
+// 1 / (2 pi), the uniform density over a full turn
+const INV_TWO_PI: f32 = 0.15915494f;
+// 2 pi
+const TWO_PI: f32 = 6.2831855f;
 
 // hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
-    let _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
-    let _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e26, select(1f, _e29, (0f < (abs(_e26) + abs(_e29))))));
+    let _e27 = ((wi_in.y * wo_in.z) + -((wi_in.z * wo_in.y)));
+    let _e30 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e27, select(1f, _e30, (0f < (abs(_e27) + abs(_e30))))));
+}
+
+// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
+fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32, lobe_norm_r: f32) -> f32 {
+    let _e7 = (cos_i * cos_o);
+    let _e10 = ((-(sin_i) * sin_o) + _e7);
+    let _e13 = ((sin_i * cos_o) + (cos_i * sin_o));
+    let _e14 = abs(_e10);
+    let _e23 = max((_e7 * inv_variance_r), 0f);
+    let _e24 = (_e23 < BESSEL_I0_SWITCH);
+    let _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    let _e28 = (_e27 * _e27);
+    let _e56 = (1f / max(_e23, BESSEL_I0_SWITCH));
+    let _e57 = (BESSEL_I0_SWITCH * _e56);
+    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)), ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]), _e24)) * exp(((-((((_e13 * _e13) / (1f + _e14)) + (_e14 - _e10))) * inv_variance_r) + select(0f, -(_e23), _e24))));
 }
 
 // hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
 fn fresnel_of_cosines(cos_i: f32, cos_t: f32, eta: f32) -> f32 {
-    let _e3 = (eta * cos_i);
-    let _e4 = (_e3 - cos_t);
-    let _e5 = (_e3 + cos_t);
-    let _e6 = (eta * cos_t);
-    let _e7 = (cos_i - _e6);
-    let _e8 = (cos_i + _e6);
-    let _e9 = (_e5 * _e5);
-    let _e10 = (_e8 * _e8);
-    return min(((((_e4 * _e4) * _e10) + ((_e7 * _e7) * _e9)) / ((2f * _e9) * _e10)), 1f);
+    let _e4 = (eta * cos_i);
+    let _e5 = (_e4 + -(cos_t));
+    let _e6 = (_e4 + cos_t);
+    let _e9 = ((-(eta) * cos_t) + cos_i);
+    let _e11 = ((eta * cos_t) + cos_i);
+    let _e12 = (_e6 * _e6);
+    let _e13 = (_e11 * _e11);
+    return min(((((_e9 * _e9) * _e12) + ((_e5 * _e5) * _e13)) / ((2f * _e12) * _e13)), 1f);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
 fn fibre_path(h_in: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, cos_theta_t: f32, eta: f32) -> FibrePath {
     let _e9 = min(max(h_in, -(1f)), 1f);
     let _e12 = (((_e9 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
-    let _e17 = sqrt(max((1f - (_e12 * _e12)), 0f));
-    let _e21 = sqrt(max((1f - (_e9 * _e9)), 0f));
-    let _e24 = fresnel_of_cosines((cos_theta_o * _e21), (cos_theta_t * _e17), eta);
-    return FibrePath(atan2(_e9, _e21), atan2(_e12, _e17), ((2f * _e17) * inv_cos_theta_t), _e24);
+    let _e18 = sqrt(max(((-(_e12) * _e12) + 1f), 0f));
+    let _e23 = sqrt(max(((1f - _e9) * (1f + _e9)), 0f));
+    let _e26 = fresnel_of_cosines((cos_theta_o * _e23), (cos_theta_t * _e18), eta);
+    return FibrePath(atan2(_e9, _e23), atan2(_e12, _e18), ((2f * _e18) * inv_cos_theta_t), _e26);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
@@ -119,9 +139,14 @@ fn attenuations(fresnel: f32, transmittance: f32) -> Attenuations {
     return Attenuations(fresnel, _e5, _e7, ((_e7 * _e6) / max((1f - _e6), TINY)));
 }
 
-// hairmath::azimuthal::exit_angle::exit_angle -- Marschner et al. 2003, eq. 3
-fn exit_angle(p: f32, gamma_i: f32, gamma_t: f32) -> f32 {
-    return ((((2f * p) * gamma_t) - (2f * gamma_i)) + (p * PI));
+// hairmath::azimuthal::exit_angle::exit_azimuths -- Marschner et al. 2003, eq. 3: phi - Phi(p) for p = 0, 1, 2, wrapped into [-pi, pi]
+fn exit_azimuths(phi: f32, gamma_i: f32, gamma_t: f32) -> ExitAzimuths {
+    let _e5 = ((2f * gamma_i) + phi);
+    let _e8 = ((2f * gamma_t) + PI);
+    let _e9 = (_e5 - _e8);
+    let _e12 = ((-2f * _e8) + _e5);
+    let _e19 = -(TWO_PI);
+    return ExitAzimuths(((floor(((_e5 * INV_TWO_PI) + 0.5f)) * _e19) + _e5), ((floor(((_e9 * INV_TWO_PI) + 0.5f)) * _e19) + _e9), ((floor(((_e12 * INV_TWO_PI) + 0.5f)) * _e19) + _e12));
 }
 
 // hairmath::bcsdf::chiang::trimmed_logistics -- Chiang et al. 2016, eq. 13
@@ -135,46 +160,30 @@ fn trimmed_logistics(dphi_r: f32, dphi_tt: f32, dphi_trt: f32, logistic_inv_scal
     return TrimmedLogistics(((_e8 * logistic_norm) / (_e10 * _e10)), ((_e17 * logistic_norm) / (_e18 * _e18)), ((_e25 * logistic_norm) / (_e26 * _e26)));
 }
 
-// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
-fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32, lobe_norm_r: f32) -> f32 {
-    let _e7 = (cos_i * cos_o);
-    let _e9 = (_e7 - (sin_i * sin_o));
-    let _e12 = ((sin_i * cos_o) + (cos_i * sin_o));
-    let _e13 = abs(_e9);
-    let _e22 = max((_e7 * inv_variance_r), 0f);
-    let _e23 = (_e22 < BESSEL_I0_SWITCH);
-    let _e26 = (min(_e22, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    let _e27 = (_e26 * _e26);
-    let _e55 = (1f / max(_e22, BESSEL_I0_SWITCH));
-    let _e56 = (BESSEL_I0_SWITCH * _e55);
-    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e56) + BESSEL_I0_FAR[7]) * _e56) + BESSEL_I0_FAR[6]) * _e56) + BESSEL_I0_FAR[5]) * _e56) + BESSEL_I0_FAR[4]) * _e56) + BESSEL_I0_FAR[3]) * _e56) + BESSEL_I0_FAR[2]) * _e56) + BESSEL_I0_FAR[1]) * _e56) + BESSEL_I0_FAR[0]) * sqrt(_e55)), ((((((((((((BESSEL_I0_NEAR[6] * _e27) + BESSEL_I0_NEAR[5]) * _e27) + BESSEL_I0_NEAR[4]) * _e27) + BESSEL_I0_NEAR[3]) * _e27) + BESSEL_I0_NEAR[2]) * _e27) + BESSEL_I0_NEAR[1]) * _e27) + BESSEL_I0_NEAR[0]), _e23)) * exp((select(0f, -(_e22), _e23) - ((((_e12 * _e12) / (1f + _e13)) + (_e13 - _e9)) * inv_variance_r))));
-}
-
 // hair_bcsdf: `hairmath eval --model chiang`, Chiang et al. 2016 (pbrt-v4 HairBxDF): the near-field reference, S(wi, wo, h)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>, h: f32) -> vec3<f32> {
     let _e30 = fibre_angles(wi, wo);
     let phi = -(_e30.phi);
-    let _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
-    let cos_theta_t = sqrt(max((1f - (_e37 * _e37)), 0f));
+    let _e37 = -(uniforms.sin_2_alpha);
+    let _e46 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e37)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) + -((_e30.sin_theta_o * _e37)))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    let _e55 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) + -((_e30.sin_theta_o * uniforms.sin_alpha)))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    let _e64 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) + -((_e30.sin_theta_o * uniforms.sin_4_alpha)))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    let _e65 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    let _e66 = (_e30.sin_theta_o * uniforms.inv_eta);
+    let cos_theta_t = sqrt(max(((-(_e66) * _e66) + 1f), 0f));
     let inv_cos_theta_t = (1f / cos_theta_t);
-    let _e45 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
-    let _e53 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.x) * _e45.segment_length)));
-    let _e61 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.y) * _e45.segment_length)));
-    let _e69 = attenuations(_e45.fresnel, exp((-(uniforms.sigma_a.z) * _e45.segment_length)));
-    let _e74 = exit_angle(0f, _e45.gamma_o, _e45.gamma_t);
-    let _e75 = (phi - _e74);
-    let _e84 = exit_angle(1f, _e45.gamma_o, _e45.gamma_t);
-    let _e85 = (phi - _e84);
-    let _e92 = exit_angle(2f, _e45.gamma_o, _e45.gamma_t);
-    let _e93 = (phi - _e92);
-    let _e99 = trimmed_logistics((_e75 - (TWO_PI * floor(((_e75 + PI) * INV_TWO_PI)))), (_e85 - (TWO_PI * floor(((_e85 + PI) * INV_TWO_PI)))), (_e93 - (TWO_PI * floor(((_e93 + PI) * INV_TWO_PI)))), uniforms.logistic_inv_scale, uniforms.logistic_norm);
-    let _e115 = -(uniforms.sin_2_alpha);
-    let _e123 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e115)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) - (_e30.sin_theta_o * _e115))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
-    let _e131 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) - (_e30.sin_theta_o * uniforms.sin_alpha))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
-    let _e139 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) - (_e30.sin_theta_o * uniforms.sin_4_alpha))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    let _e140 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    return ((((vec3(0f) + (_e123 * (vec3<f32>(_e53.r, _e61.r, _e69.r) * _e99.r))) + (_e131 * (vec3<f32>(_e53.tt, _e61.tt, _e69.tt) * _e99.tt))) + (_e139 * (vec3<f32>(_e53.trt, _e61.trt, _e69.trt) * _e99.trt))) + (_e140 * (vec3<f32>(_e53.residual, _e61.residual, _e69.residual) * INV_TWO_PI)));
+    let _e75 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
+    let _e83 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.x) * _e75.segment_length)));
+    let _e91 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.y) * _e75.segment_length)));
+    let _e99 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.z) * _e75.segment_length)));
+    let _e104 = exit_azimuths(phi, _e75.gamma_o, _e75.gamma_t);
+    let _e108 = trimmed_logistics(_e104.r, _e104.tt, _e104.trt, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+    let _e113 = (_e46 * _e108.r);
+    let _e114 = (_e55 * _e108.tt);
+    let _e115 = (_e64 * _e108.trt);
+    let _e116 = (_e65 * INV_TWO_PI);
+    return ((_e116 * vec3<f32>(_e83.residual, _e91.residual, _e99.residual)) + ((_e115 * vec3<f32>(_e83.trt, _e91.trt, _e99.trt)) + ((_e114 * vec3<f32>(_e83.tt, _e91.tt, _e99.tt)) + (_e113 * vec3<f32>(_e83.r, _e91.r, _e99.r)))));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -93,9 +93,9 @@ fn lut0_frostbite_tt(theta_o: f32, beta_n: f32) -> vec4<f32> {
 
 // hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
-    let _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
-    let _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e26, select(1f, _e29, (0f < (abs(_e26) + abs(_e29))))));
+    let _e27 = ((wi_in.y * wo_in.z) + -((wi_in.z * wo_in.y)));
+    let _e30 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e27, select(1f, _e30, (0f < (abs(_e27) + abs(_e30))))));
 }
 
 // hairmath::lobe::gaussian::gaussian_lobe -- Marschner et al. 2003, eq. 6
@@ -121,25 +121,24 @@ fn tt_gaussian(phi: f32, a: f32, b: f32) -> f32 {
 
 // hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
 fn fresnel_of_cosines(cos_i: f32, cos_t: f32, eta: f32) -> f32 {
-    let _e3 = (eta * cos_i);
-    let _e4 = (_e3 - cos_t);
-    let _e5 = (_e3 + cos_t);
-    let _e6 = (eta * cos_t);
-    let _e7 = (cos_i - _e6);
-    let _e8 = (cos_i + _e6);
-    let _e9 = (_e5 * _e5);
-    let _e10 = (_e8 * _e8);
-    return min(((((_e4 * _e4) * _e10) + ((_e7 * _e7) * _e9)) / ((2f * _e9) * _e10)), 1f);
+    let _e4 = (eta * cos_i);
+    let _e5 = (_e4 + -(cos_t));
+    let _e6 = (_e4 + cos_t);
+    let _e9 = ((-(eta) * cos_t) + cos_i);
+    let _e11 = ((eta * cos_t) + cos_i);
+    let _e12 = (_e6 * _e6);
+    let _e13 = (_e11 * _e11);
+    return min(((((_e9 * _e9) * _e12) + ((_e5 * _e5) * _e13)) / ((2f * _e12) * _e13)), 1f);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
 fn fibre_path(h: f32, cos_theta_o: f32, inv_eta: f32, inv_cos_theta_t: f32, cos_theta_t: f32, eta: f32) -> FibrePath {
     let _e9 = min(max(h, -(1f)), 1f);
     let _e12 = (((_e9 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
-    let _e17 = sqrt(max((1f - (_e12 * _e12)), 0f));
-    let _e21 = sqrt(max((1f - (_e9 * _e9)), 0f));
-    let _e24 = fresnel_of_cosines((cos_theta_o * _e21), (cos_theta_t * _e17), eta);
-    return FibrePath(atan2(_e9, _e21), atan2(_e12, _e17), ((2f * _e17) * inv_cos_theta_t), _e24);
+    let _e18 = sqrt(max(((-(_e12) * _e12) + 1f), 0f));
+    let _e23 = sqrt(max(((1f - _e9) * (1f + _e9)), 0f));
+    let _e26 = fresnel_of_cosines((cos_theta_o * _e23), (cos_theta_t * _e18), eta);
+    return FibrePath(atan2(_e9, _e23), atan2(_e12, _e18), ((2f * _e18) * inv_cos_theta_t), _e26);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
@@ -169,22 +168,22 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let tt_lobe = (_e55 * _e59);
     let inv_eta = (1f / uniforms.eta);
     let _e62 = (_e23.sin_theta_o * inv_eta);
-    let cos_theta_t = sqrt(max((1f - (_e62 * _e62)), 0f));
+    let cos_theta_t = sqrt(max(((-(_e62) * _e62) + 1f), 0f));
     let inv_cos_theta_t = (1f / cos_theta_t);
-    let _e69 = fibre_path(REFIT_TT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
-    let _e72 = -(uniforms.sigma_a.x);
-    let _e75 = attenuations(_e69.fresnel, exp((_e72 * _e69.segment_length)));
-    let _e77 = -(uniforms.sigma_a.y);
-    let _e80 = attenuations(_e69.fresnel, exp((_e77 * _e69.segment_length)));
-    let _e82 = -(uniforms.sigma_a.z);
-    let _e85 = attenuations(_e69.fresnel, exp((_e82 * _e69.segment_length)));
-    let _e91 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - uniforms.shift_trt));
-    let trt_lobe = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
-    let _e103 = fibre_path(REFIT_TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
-    let _e108 = attenuations(_e103.fresnel, exp((_e72 * _e103.segment_length)));
-    let _e112 = attenuations(_e103.fresnel, exp((_e77 * _e103.segment_length)));
-    let _e116 = attenuations(_e103.fresnel, exp((_e82 * _e103.segment_length)));
-    return ((vec3(r_lobe) + (tt_lobe * vec3<f32>(_e75.tt, _e80.tt, _e85.tt))) + (trt_lobe * vec3<f32>(_e108.trt, _e112.trt, _e116.trt)));
+    let _e70 = fibre_path(REFIT_TT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
+    let _e73 = -(uniforms.sigma_a.x);
+    let _e76 = attenuations(_e70.fresnel, exp((_e73 * _e70.segment_length)));
+    let _e78 = -(uniforms.sigma_a.y);
+    let _e81 = attenuations(_e70.fresnel, exp((_e78 * _e70.segment_length)));
+    let _e83 = -(uniforms.sigma_a.z);
+    let _e86 = attenuations(_e70.fresnel, exp((_e83 * _e70.segment_length)));
+    let _e92 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - uniforms.shift_trt));
+    let trt_lobe = (_e92 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
+    let _e104 = fibre_path(REFIT_TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
+    let _e109 = attenuations(_e104.fresnel, exp((_e73 * _e104.segment_length)));
+    let _e113 = attenuations(_e104.fresnel, exp((_e78 * _e104.segment_length)));
+    let _e117 = attenuations(_e104.fresnel, exp((_e83 * _e104.segment_length)));
+    return ((vec3(r_lobe) + (tt_lobe * vec3<f32>(_e76.tt, _e81.tt, _e86.tt))) + (trt_lobe * vec3<f32>(_e109.trt, _e113.trt, _e117.trt)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -96,9 +96,9 @@ vec4 lut0_frostbite_tt(float theta_o, float beta_n) {
 
 // hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
-    float _e26 = ((wi_in.y * wo_in.z) - (wi_in.z * wo_in.y));
-    float _e29 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
-    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e26, ((0.0 < (abs(_e26) + abs(_e29))) ? _e29 : 1.0)));
+    float _e27 = ((wi_in.y * wo_in.z) + -((wi_in.z * wo_in.y)));
+    float _e30 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
+    return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e27, ((0.0 < (abs(_e27) + abs(_e30))) ? _e30 : 1.0)));
 }
 
 // hairmath::lobe::gaussian::gaussian_lobe -- Marschner et al. 2003, eq. 6
@@ -124,25 +124,24 @@ float tt_gaussian(float phi, float a, float b) {
 
 // hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
 float fresnel_of_cosines(float cos_i, float cos_t, float eta) {
-    float _e3 = (eta * cos_i);
-    float _e4 = (_e3 - cos_t);
-    float _e5 = (_e3 + cos_t);
-    float _e6 = (eta * cos_t);
-    float _e7 = (cos_i - _e6);
-    float _e8 = (cos_i + _e6);
-    float _e9 = (_e5 * _e5);
-    float _e10 = (_e8 * _e8);
-    return min(((((_e4 * _e4) * _e10) + ((_e7 * _e7) * _e9)) / ((2.0 * _e9) * _e10)), 1.0);
+    float _e4 = (eta * cos_i);
+    float _e5 = (_e4 + -(cos_t));
+    float _e6 = (_e4 + cos_t);
+    float _e9 = ((-(eta) * cos_t) + cos_i);
+    float _e11 = ((eta * cos_t) + cos_i);
+    float _e12 = (_e6 * _e6);
+    float _e13 = (_e11 * _e11);
+    return min(((((_e9 * _e9) * _e12) + ((_e5 * _e5) * _e13)) / ((2.0 * _e12) * _e13)), 1.0);
 }
 
 // hairmath::azimuthal::path::fibre_path -- Chiang et al. 2016, sections 4.1 and 4.3 (Snell and Bravais; the chord 2 cos gamma_t / cos theta_t)
 FibrePath fibre_path(float h, float cos_theta_o, float inv_eta, float inv_cos_theta_t, float cos_theta_t, float eta) {
     float _e9 = min(max(h, -(1.0)), 1.0);
     float _e12 = (((_e9 * cos_theta_o) * inv_eta) * inv_cos_theta_t);
-    float _e17 = sqrt(max((1.0 - (_e12 * _e12)), 0.0));
-    float _e21 = sqrt(max((1.0 - (_e9 * _e9)), 0.0));
-    float _e24 = fresnel_of_cosines((cos_theta_o * _e21), (cos_theta_t * _e17), eta);
-    return FibrePath(atan(_e9, _e21), atan(_e12, _e17), ((2.0 * _e17) * inv_cos_theta_t), _e24);
+    float _e18 = sqrt(max(((-(_e12) * _e12) + 1.0), 0.0));
+    float _e23 = sqrt(max(((1.0 - _e9) * (1.0 + _e9)), 0.0));
+    float _e26 = fresnel_of_cosines((cos_theta_o * _e23), (cos_theta_t * _e18), eta);
+    return FibrePath(atan(_e9, _e23), atan(_e12, _e18), ((2.0 * _e18) * inv_cos_theta_t), _e26);
 }
 
 // hairmath::azimuthal::attenuation::attenuations -- Chiang et al. 2016, eqs. 3 and 6
@@ -172,22 +171,22 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     float tt_lobe = (_e55 * _e59);
     float inv_eta = (1.0 / uniforms.eta);
     float _e62 = (_e23.sin_theta_o * inv_eta);
-    float cos_theta_t = sqrt(max((1.0 - (_e62 * _e62)), 0.0));
+    float cos_theta_t = sqrt(max(((-(_e62) * _e62) + 1.0), 0.0));
     float inv_cos_theta_t = (1.0 / cos_theta_t);
-    FibrePath _e69 = fibre_path(TT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
-    float _e72 = -(uniforms.sigma_a.x);
-    Attenuations _e75 = attenuations(_e69.fresnel, exp((_e72 * _e69.segment_length)));
-    float _e77 = -(uniforms.sigma_a.y);
-    Attenuations _e80 = attenuations(_e69.fresnel, exp((_e77 * _e69.segment_length)));
-    float _e82 = -(uniforms.sigma_a.z);
-    Attenuations _e85 = attenuations(_e69.fresnel, exp((_e82 * _e69.segment_length)));
-    float _e91 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - uniforms.shift_trt));
-    float trt_lobe = (_e91 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
-    FibrePath _e103 = fibre_path(TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
-    Attenuations _e108 = attenuations(_e103.fresnel, exp((_e72 * _e103.segment_length)));
-    Attenuations _e112 = attenuations(_e103.fresnel, exp((_e77 * _e103.segment_length)));
-    Attenuations _e116 = attenuations(_e103.fresnel, exp((_e82 * _e103.segment_length)));
-    return ((vec3(r_lobe) + (tt_lobe * vec3(_e75.tt, _e80.tt, _e85.tt))) + (trt_lobe * vec3(_e108.trt, _e112.trt, _e116.trt)));
+    FibrePath _e70 = fibre_path(TT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
+    float _e73 = -(uniforms.sigma_a.x);
+    Attenuations _e76 = attenuations(_e70.fresnel, exp((_e73 * _e70.segment_length)));
+    float _e78 = -(uniforms.sigma_a.y);
+    Attenuations _e81 = attenuations(_e70.fresnel, exp((_e78 * _e70.segment_length)));
+    float _e83 = -(uniforms.sigma_a.z);
+    Attenuations _e86 = attenuations(_e70.fresnel, exp((_e83 * _e70.segment_length)));
+    float _e92 = gaussian_lobe(uniforms.width_trt, (sum_of_sines - uniforms.shift_trt));
+    float trt_lobe = (_e92 * (uniforms.trt_scale * exp((uniforms.trt_scale * ((KARIS_D_TRT[0] * cos_phi) + KARIS_D_TRT[1])))));
+    FibrePath _e104 = fibre_path(TRT_OFFSET, _e23.cos_theta_o, inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
+    Attenuations _e109 = attenuations(_e104.fresnel, exp((_e73 * _e104.segment_length)));
+    Attenuations _e113 = attenuations(_e104.fresnel, exp((_e78 * _e104.segment_length)));
+    Attenuations _e117 = attenuations(_e104.fresnel, exp((_e83 * _e104.segment_length)));
+    return ((vec3(r_lobe) + (tt_lobe * vec3(_e76.tt, _e81.tt, _e86.tt))) + (trt_lobe * vec3(_e109.trt, _e113.trt, _e117.trt)));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -91,10 +91,10 @@ fn reflectance<R: Real>(cos_i: R, eta: R, inv_eta: R) -> (R, R) {
 /// sharing one division: `(a^2 d^2 + c^2 b^2) / (2 b^2 d^2)` for `r_par = a / b`, `r_perp = c / d`.
 #[inline(always)]
 fn amplitude_ratios_squared<R: Real>(cos_i: R, cos_t: R, eta: R) -> R {
-    let (a, b) = (eta * cos_i - cos_t, eta * cos_i + cos_t);
-    let (c, d) = (cos_i - eta * cos_t, cos_i + eta * cos_t);
+    let (a, b) = (eta.mul_add(cos_i, -cos_t), eta.mul_add(cos_i, cos_t));
+    let (c, d) = ((-eta).mul_add(cos_t, cos_i), eta.mul_add(cos_t, cos_i));
     let (bb, dd) = (b * b, d * d);
-    ((a * a * dd + c * c * bb) / (R::c(2.0) * bb * dd)).min(R::c(1.0))
+    ((c * c).mul_add(bb, a * a * dd) / (R::c(2.0) * bb * dd)).min(R::c(1.0))
 }
 
 /// Schlick's approximation `R0 + (1 - R0)(1 - cos_i)^5` with `R0 = ((eta - 1)/(eta + 1))^2`

@@ -159,7 +159,7 @@ pub fn sin_cos_theta<R: Real>(tangent: V3<R>, w: V3<R>) -> (R, R) {
 pub fn local_sin_cos_theta<R: Real>(w: V3<R>) -> (R, R) {
     (
         w.x.clamp(R::c(-1.0), R::c(1.0)),
-        (w.y * w.y + w.z * w.z).sqrt().min(R::c(1.0)),
+        w.y.mul_add(w.y, w.z * w.z).sqrt().min(R::c(1.0)),
     )
 }
 
@@ -174,7 +174,7 @@ pub fn azimuth_between<R: Real>(tangent: V3<R>, a: V3<R>, b: V3<R>) -> R {
 /// `(a_y, a_z)` and `(b_y, b_z)`: `atan2(a_y b_z - a_z b_y, a_y b_y + a_z b_z)`.
 #[inline(always)]
 fn local_azimuth_between<R: Real>(a_y: R, a_z: R, b_y: R, b_z: R) -> R {
-    angle_of(a_y * b_z - a_z * b_y, a_y * b_y + a_z * b_z)
+    angle_of(a_y.mul_add(b_z, -(a_z * b_y)), a_y.mul_add(b_y, a_z * b_z))
 }
 
 /// The angle whose sine and cosine are proportional to `sine` and `cosine`, `atan2(sine,

@@ -1,7 +1,7 @@
-use super::path::Refraction;
+use super::path::{cos_of_offset, Refraction};
 use crate::absorption::PathLength;
 use crate::fresnel::fresnel_from_outside;
-use crate::real::{safe_sqrt, Real, ShaderFunction, TINY};
+use crate::real::{Real, ShaderFunction, TINY};
 
 /// Number of attenuations the Chiang model sums: the lobes R, TT and TRT **and** the residual
 /// (p >= 3), which is not a lobe of its own but all higher orders together.
@@ -43,7 +43,7 @@ pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES_WITH_RESIDUAL
 /// at the true angle of incidence, cos = cos(theta_o) cos(gamma_o), gamma_o = asin h
 /// ([`crate::fresnel::fresnel_from_outside`]).
 pub fn attenuations<R: Real>(cos_theta_o: R, eta: R, h: R, t: R) -> [R; LOBES_WITH_RESIDUAL] {
-    let cos_gamma_o = safe_sqrt(R::c(1.0) - h * h);
+    let cos_gamma_o = cos_of_offset(h);
     let fresnel = fresnel_from_outside(cos_theta_o * cos_gamma_o, eta, R::c(1.0) / eta);
     attenuations_from_fresnel(fresnel, t)
 }

@@ -1,10 +1,11 @@
 use super::path::Refraction;
 use crate::absorption::PathLength;
-use crate::real::{pi, safe_sqrt, Real, ShaderFunction};
+use crate::real::{map_array, pi, safe_sqrt, wrap_angle, Real, ShaderFunction};
 
 /// The azimuthal exit angle of path p (p internal segments) entering at angle gamma_i and
 /// refracting to gamma_t: `Phi(p) = 2 p gamma_t - 2 gamma_i + p pi` (Marschner et al. 2003,
-/// eq. 3; pbrt-v4 `Phi`). `p` is a real so that traced code can select it.
+/// eq. 3; pbrt-v4 `Phi`), grouped as `p (2 gamma_t + pi) - 2 gamma_i`: each internal segment
+/// turns the ray by `2 gamma_t + pi`. `p` is a real so that traced code can select it.
 pub fn exit_angle<R: Real>(p: R, gamma_i: R, gamma_t: R) -> R {
     const FUNCTION: ShaderFunction = crate::shader_function!(
         exit_angle,
@@ -15,8 +16,43 @@ pub fn exit_angle<R: Real>(p: R, gamma_i: R, gamma_t: R) -> R {
         &FUNCTION,
         [p, gamma_i, gamma_t],
         #[inline(always)]
-        |[p, gamma_i, gamma_t]| [R::c(2.0) * p * gamma_t - R::c(2.0) * gamma_i + p * pi::<R>()],
+        |[p, gamma_i, gamma_t]| [p.mul_add(segment_turn(gamma_t), R::c(-2.0) * gamma_i)],
     )[0]
+}
+
+/// `2 gamma_t + pi`: the azimuth by which each internal segment of a path turns the ray
+/// (Marschner et al. 2003, eq. 3: `Phi(p) = p (2 gamma_t + pi) - 2 gamma_i`).
+#[inline(always)]
+fn segment_turn<R: Real>(gamma_t: R) -> R {
+    R::c(2.0).mul_add(gamma_t, pi::<R>())
+}
+
+/// `phi - Phi(p)` for R, TT and TRT (p = 0, 1, 2), each wrapped into [-pi, pi]
+/// ([`wrap_angle`]): with `Phi(p) = p (2 gamma_t + pi) - 2 gamma_i` ([`exit_angle`]) it is
+/// `u - p t` for `u = phi + 2 gamma_i` and the [`segment_turn`] t, so the three take four
+/// operations before their wrapping (one multiply-add each for u and t, one subtraction and
+/// one multiply-add), where three calls of [`exit_angle`] and three subtractions took twelve.
+#[inline(always)]
+pub(crate) fn azimuths_from_exit_angles<R: Real>(phi: R, gamma_i: R, gamma_t: R) -> [R; 3] {
+    const FUNCTION: ShaderFunction = crate::shader_function!(
+        exit_azimuths,
+        "Marschner et al. 2003, eq. 3: phi - Phi(p) for p = 0, 1, 2, wrapped into [-pi, pi]",
+        [phi, gamma_i, gamma_t] -> {r, tt, trt}
+    );
+    R::call(
+        &FUNCTION,
+        [phi, gamma_i, gamma_t],
+        #[inline(always)]
+        |[phi, gamma_i, gamma_t]| {
+            let u = R::c(2.0).mul_add(gamma_i, phi);
+            let turn = segment_turn(gamma_t);
+            map_array(
+                [u, u - turn, R::c(-2.0).mul_add(turn, u)],
+                #[inline(always)]
+                |x| wrap_angle(x),
+            )
+        },
+    )
 }
 
 /// sin(gamma_t) for offset h and a ray inclined at theta (given by its sine and cosine): Snell's

@@ -15,6 +15,7 @@ pub use distribution::{
     logistic, logistic_cdf, sample_trimmed_logistic, sample_wrapped_gaussian, trimmed_logistic,
     trimmed_mass, wrapped_gaussian, TrimmedLogistic, WRAPPED_GAUSSIAN_TERMS,
 };
+pub(crate) use exit_angle::azimuths_from_exit_angles;
 pub use exit_angle::{exit_angle, exit_angle_of_offset, refracted_offset};
 pub use marschner::{
     marschner_attenuation, marschner_critical_angle, marschner_exit_angle,

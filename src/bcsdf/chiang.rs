@@ -32,7 +32,10 @@ use super::inputs::{FromInputs, InputValues, HAIR_INPUTS};
 use super::model::{Bcsdf, HairSample, Model, Query, RandomNumbers, SampledBcsdf};
 use super::varying::{eta_in, roughness_in, tilt_in, InputsIn, VaryingInputs};
 use crate::absorption::PathLength;
-use crate::azimuthal::{exit_angle, FibrePath, Refraction, TrimmedLogistic, LOBES_WITH_RESIDUAL};
+use crate::azimuthal::{
+    azimuths_from_exit_angles, exit_angle, FibrePath, Refraction, TrimmedLogistic,
+    LOBES_WITH_RESIDUAL,
+};
 use crate::error::ParamError;
 use crate::geometry::{
     azimuth_between, local_direction, local_fibre_angles, local_sin_cos_theta, V3,
@@ -217,14 +220,16 @@ pub trait Offsets<R: Real>: Clone {
     /// Whether S depends on the query's offset h (the near field).
     const NEAR_FIELD: bool;
 
-    /// The azimuthal factors of `hair` for `at`, at its offset or averaged over offsets; the
-    /// pdf's factors `w_p N_p` only `WITH_PDF` (zero otherwise: evaluation skips the
-    /// lobe-choice divisions).
-    fn azimuthal<O, const WITH_PDF: bool>(
+    /// The factors of every lobe of `hair` for `at` with the longitudinal factors `m` (`M_p`
+    /// of R, TT, TRT and the residual), the azimuthal ones at `at`'s offset or averaged over
+    /// offsets; the pdf's only `WITH_PDF` (zero otherwise: evaluation skips the lobe-choice
+    /// divisions).
+    fn lobe_terms<O, const WITH_PDF: bool>(
         &self,
         hair: &ChiangHair<R, O>,
         at: Outgoing<R>,
-    ) -> AzimuthalFactors<R>;
+        m: [R; LOBES_WITH_RESIDUAL],
+    ) -> LobeTerms<R>;
 
     /// The offset importance sampling draws at: `h` itself, or a node chosen by `u` in [0, 1).
     fn sample_offset(&self, h: R, u: R) -> R;
@@ -257,26 +262,34 @@ impl<R: Real> Offsets<R> for AtOffset {
     }
 
     #[inline(always)]
-    fn azimuthal<O, const WITH_PDF: bool>(
+    fn lobe_terms<O, const WITH_PDF: bool>(
         &self,
         hair: &ChiangHair<R, O>,
         at: Outgoing<R>,
-    ) -> AzimuthalFactors<R> {
-        hair.azimuthal_at::<WITH_PDF>(at)
+        m: [R; LOBES_WITH_RESIDUAL],
+    ) -> LobeTerms<R> {
+        hair.lobe_terms_at::<WITH_PDF>(at, m)
     }
 }
 
-/// The factors of every lobe for one direction pair: the longitudinal `M_p`, and the azimuthal
-/// factors at one offset (near field) or averaged over offsets (far field). Evaluation, the pdf
-/// and the per-lobe split are sums over them.
+/// The factors of every lobe for one direction pair, grouped as the value, the pdf and the
+/// per-lobe split read them: `M_p A_p N_p = weight_p channels_p` per channel and
+/// `M_p w_p N_p = weight_p choice_p` (w_p the lobe-choice probability of sampling).
+///
+/// The near field puts the factor its channels share into the weight: `weight_p = M_p N_p`,
+/// `channels_p = A_p`, `choice_p = w_p`, so the sum over the lobes takes one multiply-add per
+/// lobe and channel (multiplying `A_p N_p` first took one more multiplication per lobe and
+/// channel). The far field averages `A_p N_p` over its offsets, which does not factor:
+/// `weight_p = M_p`, and `channels_p` and `choice_p` are the averages of `A_p N_p` and
+/// `w_p N_p`.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct LobeTerms<R> {
-    /// M_p, tilted, for p = 0..3.
-    pub m: [R; LOBES_WITH_RESIDUAL],
-    /// A_p N_p per channel (N_3 = 1 / 2 pi).
-    pub an: [[R; 3]; LOBES_WITH_RESIDUAL],
-    /// (probability of choosing lobe p) N_p.
-    pub wn: [R; LOBES_WITH_RESIDUAL],
+pub struct LobeTerms<R> {
+    /// The factor of lobe p shared by its channels (R, TT, TRT, residual).
+    pub weight: [R; LOBES_WITH_RESIDUAL],
+    /// The factors of lobe p per channel.
+    pub channels: [[R; 3]; LOBES_WITH_RESIDUAL],
+    /// The lobe-choice factor of the pdf of lobe p.
+    pub choice: [R; LOBES_WITH_RESIDUAL],
 }
 
 impl<R: Real> LobeTerms<R> {
@@ -285,32 +298,33 @@ impl<R: Real> LobeTerms<R> {
     pub fn value(&self) -> [R; 3] {
         array_from_fn(
             #[inline(always)]
-            |c| {
-                let mut sum = R::c(0.0);
-                for (m, an) in self.m.iter().zip(&self.an) {
-                    sum += *m * an[c];
-                }
-                sum
-            },
+            |c| weighted_sum(&self.weight, |p| self.channels[p][c]),
         )
     }
 
     /// `pdf = sum_p M_p w_p N_p`.
     #[inline(always)]
     pub fn pdf(&self) -> R {
-        let mut pdf = R::c(0.0);
-        for (m, wn) in self.m.iter().zip(&self.wn) {
-            pdf += *m * *wn;
-        }
-        pdf
+        weighted_sum(&self.weight, |p| self.choice[p])
     }
 
     /// `M_p A_p N_p` per lobe and channel.
     pub fn per_lobe(&self) -> Vec<[R; 3]> {
         (0..LOBES_WITH_RESIDUAL)
-            .map(|p| self.an[p].map(|an| self.m[p] * an))
+            .map(|p| self.channels[p].map(|x| self.weight[p] * x))
             .collect()
     }
+}
+
+/// `sum_p weight_p factor(p)` by multiply-adds, from the first lobe's product (adding it to 0
+/// would cost an addition: `0 + x` is not `x` for `x = -0`).
+#[inline(always)]
+fn weighted_sum<R: Real>(weight: &[R; LOBES_WITH_RESIDUAL], factor: impl Fn(usize) -> R) -> R {
+    let mut sum = weight[0] * factor(0);
+    for (p, w) in weight.iter().enumerate().skip(1) {
+        sum = w.mul_add(factor(p), sum);
+    }
+    sum
 }
 
 /// sin and cos of theta_i, and what the azimuthal factors depend on ([`Outgoing`]).
@@ -428,7 +442,10 @@ impl<R: Real, O> ChiangHair<R, O> {
             2 => (u.sin_4_alpha, u.cos_4_alpha),
             _ => return (sin_o, cos_o),
         };
-        (sin_o * c + cos_o * s, (cos_o * c - sin_o * s).abs())
+        (
+            sin_o.mul_add(c, cos_o * s),
+            cos_o.mul_add(c, -(sin_o * s)).abs(),
+        )
     }
 
     /// The refraction into the fibre of wo's ray, inclined at theta_o (sine and cosine): what
@@ -499,6 +516,30 @@ impl<R: Real, O> ChiangHair<R, O> {
         azimuthal_factors::<R, WITH_PDF>(&a, n)
     }
 
+    /// The near field's [`LobeTerms`] at `at`'s offset (clamped to [-1, 1]) and relative
+    /// azimuth, given the longitudinal factors `m`: `weight_p = M_p N_p`, `channels_p = A_p`,
+    /// `choice_p = w_p` (the lobe-choice probabilities, only `WITH_PDF`).
+    #[inline(always)]
+    fn lobe_terms_at<const WITH_PDF: bool>(
+        &self,
+        at: Outgoing<R>,
+        m: [R; LOBES_WITH_RESIDUAL],
+    ) -> LobeTerms<R> {
+        let (path, a) = self.attenuations_at(&self.refraction(at.sin_o, at.cos_o), at.h);
+        let n = self.distributions(at.phi, path.gamma_o, path.gamma_t);
+        LobeTerms {
+            weight: array_from_fn(
+                #[inline(always)]
+                |p| m[p] * n[p],
+            ),
+            channels: a,
+            choice: match WITH_PDF {
+                true => lobe_weights(&a),
+                false => [R::c(0.0); LOBES_WITH_RESIDUAL],
+            },
+        }
+    }
+
     /// The azimuthal factors of the offsets `h` and `-h` together (`at.h` in [0, 1]):
     /// `(A_p (N_p(h) + N_p(-h)) per channel, w_p (N_p(h) + N_p(-h)))`, for the far field's
     /// symmetric nodes. The path's segment length and entry Fresnel term depend on `h^2`
@@ -527,10 +568,7 @@ impl<R: Real, O> ChiangHair<R, O> {
     /// TRT ([`TrimmedLogistic::densities`]), `1 / (2 pi)` for the residual.
     #[inline(always)]
     fn distributions(&self, phi: R, gamma_o: R, gamma_t: R) -> [R; LOBES_WITH_RESIDUAL] {
-        let dphi: [R; 3] = array_from_fn(
-            #[inline(always)]
-            |p| wrap_angle(phi - exit_angle(R::c(p as f64), gamma_o, gamma_t)),
-        );
+        let dphi = azimuths_from_exit_angles(phi, gamma_o, gamma_t);
         // N_p of R, TT and TRT about their exit angles, as one shader function.
         const DISTRIBUTIONS: ShaderFunction = crate::shader_function!(
             trimmed_logistics,
@@ -544,23 +582,6 @@ impl<R: Real, O> ChiangHair<R, O> {
             |dphi| self.logistic().densities(dphi),
         );
         [n0, n1, n2, INV_TWO_PI.get()]
-    }
-
-    /// The lobe factors for a query and an azimuthal part computed by `azimuthal` from
-    /// [`Outgoing`].
-    #[inline(always)]
-    pub(crate) fn terms_with(
-        &self,
-        query: &Query<R>,
-        azimuthal: impl FnOnce(Outgoing<R>) -> AzimuthalFactors<R>,
-    ) -> LobeTerms<R> {
-        let angles = PairAngles::of(query);
-        let (an, wn) = azimuthal(angles.out);
-        LobeTerms {
-            m: self.longitudinal(&angles),
-            an,
-            wn,
-        }
     }
 
     /// The direction [`SampledBcsdf::sample`] draws at offset `h`, without evaluating S and
@@ -671,11 +692,9 @@ impl<R: Real, O: Offsets<R>> ChiangHair<R, O> {
     /// only `WITH_PDF`).
     #[inline(always)]
     fn terms<const WITH_PDF: bool>(&self, query: &Query<R>) -> LobeTerms<R> {
-        self.terms_with(
-            query,
-            #[inline(always)]
-            |at| self.offsets.azimuthal::<O, WITH_PDF>(self, at),
-        )
+        let angles = PairAngles::of(query);
+        let m = self.longitudinal(&angles);
+        self.offsets.lobe_terms::<O, WITH_PDF>(self, angles.out, m)
     }
 }
 

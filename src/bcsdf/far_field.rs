@@ -215,14 +215,12 @@ impl OffsetsIn for OffsetNodes<f64> {
     }
 }
 
-impl<R: Real> Offsets<R> for OffsetNodes<R> {
-    const NEAR_FIELD: bool = false;
-
+impl<R: Real> OffsetNodes<R> {
     /// `(N_p A_p per channel, w_p N_p)` averaged over the nodes, a mirrored pair of them at a
     /// time: `N_p` here includes the attenuation, `1/2 int A_p(h) D(phi - Phi(p, h)) dh`;
     /// `at.h` is ignored.
     #[inline(always)]
-    fn azimuthal<O, const WITH_PDF: bool>(
+    pub(crate) fn averaged<O, const WITH_PDF: bool>(
         &self,
         hair: &ChiangHair<R, O>,
         at: Outgoing<R>,
@@ -264,6 +262,27 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
                 },
             );
             (per_lobe(&sums), [R::c(0.0); LOBES_WITH_RESIDUAL])
+        }
+    }
+}
+
+impl<R: Real> Offsets<R> for OffsetNodes<R> {
+    const NEAR_FIELD: bool = false;
+
+    /// `weight_p = M_p`, with the averages of `A_p N_p` and `w_p N_p` over the nodes
+    /// (`OffsetNodes::averaged`) as the channels and the lobe choice.
+    #[inline(always)]
+    fn lobe_terms<O, const WITH_PDF: bool>(
+        &self,
+        hair: &ChiangHair<R, O>,
+        at: Outgoing<R>,
+        m: [R; LOBES_WITH_RESIDUAL],
+    ) -> LobeTerms<R> {
+        let (channels, choice) = self.averaged::<O, WITH_PDF>(hair, at);
+        LobeTerms {
+            weight: m,
+            channels,
+            choice,
         }
     }
 
@@ -325,7 +344,7 @@ impl<R: Real> ChiangHair<R, OffsetNodes<R>> {
             phi: phi_i_minus_o,
             h: R::c(0.0),
         };
-        self.offsets().azimuthal::<_, true>(self, at)
+        self.offsets().averaged::<_, true>(self, at)
     }
 }
 
@@ -605,9 +624,9 @@ impl ChiangHair<f64> {
             rel_tol,
         );
         let terms = LobeTerms {
-            m: self.longitudinal(&angles),
-            an: azimuthal,
-            wn: [0.0; LOBES_WITH_RESIDUAL],
+            weight: self.longitudinal(&angles),
+            channels: azimuthal,
+            choice: [0.0; LOBES_WITH_RESIDUAL],
         };
         let per_lobe = terms.per_lobe();
         FarFieldReference {

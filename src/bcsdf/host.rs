@@ -257,9 +257,10 @@ mod tests {
     /// Every instruction set this CPU runs, against `f64` and scalar `f32` on 100k random
     /// samples and the hard cases, with the bounds of the `wide` lanes
     /// (`batch_matches_scalar_and_reference`). Measured on the AMD EPYC (Zen 4) development
-    /// machine, default build: against f64 7.13e-5 with AVX-512 and AVX2, 7.12e-5 on the
-    /// baseline, all at the same sample (the `1 - h^2` of single precision at |h| -> 1);
-    /// against scalar f32 8.58e-6 on every set.
+    /// machine, default build: against f64 8.99e-6 with AVX-512 and AVX2, 8.75e-6 on the
+    /// baseline, all at the same sample; against scalar f32 1.15e-5 with AVX-512 and AVX2 and
+    /// 1.13e-5 on the baseline (the lanes fuse their multiply-adds, scalar `f32` rounds
+    /// twice, and each is within 9e-6 of `f64`).
     #[test]
     fn every_instruction_set_matches_scalar_and_reference() {
         const FLOOR: f64 = 1e-6;
@@ -290,7 +291,7 @@ mod tests {
             eprintln!(
                 "{set:?}: vs f64 {vs_f64:.3e} (sample {k64}), vs f32 {vs_f32:.3e} (sample {k32})"
             );
-            assert!(vs_f64 < 1e-4, "{set:?} vs f64: {vs_f64:e} at {k64}");
+            assert!(vs_f64 < 2e-5, "{set:?} vs f64: {vs_f64:e} at {k64}");
             assert!(vs_f32 < 1.2e-5, "{set:?} vs f32: {vs_f32:e} at {k32}");
         }
     }

@@ -33,7 +33,7 @@ pub use batch::{
 pub use batch::{par_eval_batch, par_eval_batch_soa, par_pdf_batch, PARALLEL_CHUNK};
 pub use chiang::{
     logistic_scale, longitudinal_variance, AtOffset, AzimuthalFactors, ChiangHair, ChiangUniforms,
-    Offsets, OffsetsIn, Outgoing, CHIANG_LOBES,
+    LobeTerms, Offsets, OffsetsIn, Outgoing, CHIANG_LOBES,
 };
 pub(crate) use chiang::{variance_of, PairAngles, HAIR_VARYING};
 pub use far_field::{

@@ -73,15 +73,17 @@ impl<R: Real> DeonLobe<R> {
             #[inline(always)]
             |[sin_i, cos_i, sin_o, cos_o]| {
                 let one = R::c(1.0);
-                let cos_sum = cos_i * cos_o - sin_i * sin_o;
-                let sin_sum = sin_i * cos_o + cos_i * sin_o;
+                let cos_cos = cos_i * cos_o;
+                let cos_sum = (-sin_i).mul_add(sin_o, cos_cos);
+                let sin_sum = sin_i.mul_add(cos_o, cos_i * sin_o);
                 // 1 - cos = sin^2 / (1 + |cos|) + (|cos| - cos): for cos > 0 the first term
                 // alone, free of the cancellation of 1 - cos near 0; for cos <= 0 it is
                 // 1 - |cos| and the second term adds 2 |cos|. No select.
                 let abs_cos = cos_sum.abs();
                 let one_minus_cos = sin_sum * sin_sum / (one + abs_cos) + (abs_cos - cos_sum);
-                let (scale, shift) = form.i0e_split(cos_i * cos_o * self.inv_v);
-                [self.norm * scale * (shift - one_minus_cos * self.inv_v).exp_of_nonpositive()]
+                let (scale, shift) = form.i0e_split(cos_cos * self.inv_v);
+                let exponent = (-one_minus_cos).mul_add(self.inv_v, shift);
+                [self.norm * scale * exponent.exp_of_nonpositive()]
             },
         )[0]
     }

@@ -109,7 +109,7 @@ use crate::absorption::{Absorption, PathLength};
 use crate::azimuthal::{CausticParams, Refraction};
 use crate::bcsdf::{
     eta_in, roughness_in, tilt_in, Bcsdf, ChiangFarField, ChiangUniforms, FarFieldRule, Input,
-    InputsIn, Model, OffsetNodes, Offsets, OffsetsIn, Outgoing, PairAngles, Query, VaryingInputs,
+    InputsIn, Model, OffsetNodes, OffsetsIn, Outgoing, PairAngles, Query, VaryingInputs,
     HAIR_INPUTS, HAIR_VARYING,
 };
 use crate::geometry::local_fibre_angles;
@@ -1369,12 +1369,7 @@ impl<R: Real> ComposedHair<R> {
         let deon = chiang.longitudinal(&a.pair);
         let zero = [[R::c(0.0); 3]; 4];
         let far = match self.composition.uses_far_field() {
-            true => {
-                chiang
-                    .offsets()
-                    .azimuthal::<_, false>(&chiang, a.pair.out)
-                    .0
-            }
+            true => chiang.offsets().averaged::<_, false>(&chiang, a.pair.out).0,
             false => zero,
         };
         let tables = self.table_values(&a);

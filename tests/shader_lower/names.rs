@@ -45,7 +45,7 @@ fn named_constants_are_declared_once_with_their_meaning_and_read_by_name() {
     );
     let code = code_lines(&wgsl).join("\n");
     assert!(code.contains("BESSEL_I0_NEAR[6]"), "{code}");
-    assert!(code.contains("* PI)"), "{code}");
+    assert!(code.contains("+ PI)"), "{code}");
     for literal in [
         "3.1415927f",
         "6.2831855f",

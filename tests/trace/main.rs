@@ -964,7 +964,7 @@ traced_tests! {
     }
     chiang_eval [
         "ChiangHair::eval", "LobeTerms::value", "PairAngles::of", "query_of", "Query::new",
-        "AtOffset::azimuthal"
+        "AtOffset::lobe_terms"
     ] {
         // Through the library's own shader entry point: (uniforms, wi, wo, h) -> vec3.
         let model = ChiangHair::new(&HairParams::default());
@@ -1011,7 +1011,7 @@ traced_tests! {
 
     far_field [
         "ChiangHair::with_rule", "ChiangHair::near_field", "ChiangHair::azimuthal",
-        "ChiangHair::offsets", "OffsetNodes::new", "OffsetNodes::azimuthal", "OffsetNodes::cast",
+        "ChiangHair::offsets", "OffsetNodes::new", "OffsetNodes::lobe_terms", "OffsetNodes::cast",
         "Query::far"
     ] {
         // The rule's nodes are folded into the shader as constants: one trace per node count

@@ -30,7 +30,7 @@ fn the_near_field_calls_one_lobe_function_for_its_four_lobes() {
         "deon_lobe",
         "fibre_path",
         "attenuations",
-        "exit_angle",
+        "exit_azimuths",
     ] {
         assert!(
             names.contains(&expected),
