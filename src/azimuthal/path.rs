@@ -114,7 +114,9 @@ impl<R: Real> Refraction<R> {
 /// cos(gamma_o) = sqrt(1 - h^2) of the offset `h` in [-1, 1], with `1 - h^2` formed as
 /// `(1 - h)(1 + h)`: as |h| -> 1 the rounding of `h^2` would be most of the difference (in
 /// single precision it put up to 7e-5 of S into every lobe, the largest error of the batch
-/// tests against `f64`), where `1 - h` is exact (Sterbenz) and the product rounds once.
+/// tests against `f64`), where `1 - h` is exact (Sterbenz) and the product rounds once. The
+/// path's other cosines keep the one multiply-add `1 - s^2`: their sines stay below
+/// `1 / eta' < 1`, where the rounding of `s^2` does not dominate.
 #[inline(always)]
 pub(crate) fn cos_of_offset<R: Real>(h: R) -> R {
     let one = R::c(1.0);

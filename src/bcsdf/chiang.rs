@@ -274,7 +274,9 @@ impl<R: Real> Offsets<R> for AtOffset {
 
 /// The factors of every lobe for one direction pair, grouped as the value, the pdf and the
 /// per-lobe split read them: `M_p A_p N_p = weight_p channels_p` per channel and
-/// `M_p w_p N_p = weight_p choice_p` (w_p the lobe-choice probability of sampling).
+/// `M_p w_p N_p = weight_p choice_p` (w_p the lobe-choice probability of sampling; the sum
+/// `S = sum_p M_p A_p N_p` is the lobe sum of Chiang et al. 2016 and pbrt-v4's `HairBxDF::f`,
+/// the pdf that of `HairBxDF::PDF`).
 ///
 /// The near field puts the factor its channels share into the weight: `weight_p = M_p N_p`,
 /// `channels_p = A_p`, `choice_p = w_p`, so the sum over the lobes takes one multiply-add per
