@@ -1,6 +1,7 @@
 //! Cost of the far-field N_p integrators and of the far-field BCSDF: the adaptive f64 reference,
 //! the fixed-node rule at several node counts in f64 and f32, a baked far-field N_p table's
-//! trilinear lookup (the real-time alternative), and full far-field evaluation.
+//! trilinear lookup (the real-time alternative), and full far-field evaluation (also with the
+//! node pairs in SIMD lanes, `HostFarField`).
 //! Each iteration processes the same 256 deterministic (theta_o, phi) pairs; criterion's time
 //! divided by 256 is the cost of one N_p evaluation (all four lobes, three channels).
 //!
@@ -9,7 +10,7 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use hairmath::bcsdf::{Bcsdf, ChiangFarField, ChiangHair, FarFieldRule, Query};
+use hairmath::bcsdf::{Bcsdf, ChiangFarField, ChiangHair, FarFieldRule, HostFarField, Query};
 use hairmath::geometry::{local_direction, V3};
 use hairmath::lut::{bake, FarFieldN};
 use hairmath::params::{AzimuthalRoughness, HairParams};
@@ -102,36 +103,49 @@ fn fast<R: Real>(
     });
 }
 
+/// One far-field evaluation per query, all lobes and channels: the rule in `f64` and `f32`
+/// walking its pairs of nodes, and `HostFarField` with the pairs in the lanes of the host's
+/// widest instruction set.
 fn bench_eval(c: &mut Criterion) {
     let xs = angles();
     let pairs: Vec<(V3<f64>, V3<f64>)> = xs
         .iter()
         .map(|&(s, co, phi)| (local_direction(-s, co, phi), local_direction(s, co, 0.0)))
         .collect();
-    let mut g = c.benchmark_group("far_field_eval");
-    g.throughput(Throughput::Elements(N as u64));
-    let rule = FarFieldRule::gauss_legendre(32).expect("valid node count");
-    let far64 = ChiangFarField::<f64>::with_rule(&params(), &rule);
-    g.bench_function(BenchmarkId::new("eval", "f64 32 nodes"), |b| {
-        b.iter(|| {
-            for &(wi, wo) in &pairs {
-                black_box(far64.eval(&Query::far(wi, wo)));
-            }
-        })
-    });
-    let far32 = ChiangFarField::<f32>::with_rule(&params(), &rule);
     let pairs32: Vec<(V3<f32>, V3<f32>)> = pairs
         .iter()
         .map(|(a, b)| (V3::from_f64(a.x, a.y, a.z), V3::from_f64(b.x, b.y, b.z)))
         .collect();
-    g.bench_function(BenchmarkId::new("eval", "f32 32 nodes"), |b| {
+    let mut g = c.benchmark_group("far_field_eval");
+    g.throughput(Throughput::Elements(N as u64));
+    for nodes in [8, 32, 64] {
+        let rule = FarFieldRule::gauss_legendre(nodes).expect("valid node count");
+        let far64 = ChiangFarField::<f64>::with_rule(&params(), &rule);
+        let lanes = HostFarField::new(&far64);
+        let set = lanes.instruction_set();
+        eval_each(&mut g, &format!("f64 {nodes} nodes"), &far64, &pairs);
+        let far32 = ChiangFarField::<f32>::with_rule(&params(), &rule);
+        eval_each(&mut g, &format!("f32 {nodes} nodes"), &far32, &pairs32);
+        let name = format!("f32 {nodes} nodes, HostFarField {set:?}");
+        eval_each(&mut g, &name, &lanes, &pairs32);
+    }
+    g.finish();
+}
+
+/// `model.eval` of every pair, each value through `black_box`.
+fn eval_each<R: Real>(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    name: &str,
+    model: &impl Bcsdf<R>,
+    pairs: &[(V3<R>, V3<R>)],
+) {
+    g.bench_function(BenchmarkId::new("eval", name), |b| {
         b.iter(|| {
-            for &(wi, wo) in &pairs32 {
-                black_box(far32.eval(&Query::far(wi, wo)));
+            for &(wi, wo) in pairs {
+                black_box(model.eval(&Query::far(wi, wo)));
             }
         })
     });
-    g.finish();
 }
 
 criterion_group!(benches, bench_np, bench_eval);

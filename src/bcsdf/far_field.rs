@@ -21,6 +21,10 @@
 //!   panel (it has a kink there). Measured against the near field averaged over h by brute
 //!   force (2^16 panels) to 1e-9 of the largest channel (tests/far_field.rs).
 //!
+//! [`crate::bcsdf::HostFarField`] evaluates the fixed-node rule one query at a time with its
+//! mirrored pairs of nodes in the SIMD lanes of the host's widest instruction set
+//! ([`OffsetNodes`]' spread form), 6 to 9 times faster than scalar `f32` at 32 and 64 nodes.
+//!
 //! The fast model [`ChiangFarField`] is defined by its rule: evaluation, the pdf and sampling use
 //! the same nodes, so `value / pdf` is exactly 1 without absorption and the sampler's density is
 //! exactly the returned pdf. Its distance from the exact far field is the rule's integration
@@ -33,6 +37,7 @@
 //! weights. `--reference` has no shader form: its adaptive quadrature refines to a tolerance
 //! with a data-dependent number of evaluations.
 
+use super::batch::BatchLanes;
 use super::chiang::{chiang_uniforms_in, ChiangUniforms, HAIR_VARYING};
 use super::chiang::{
     AzimuthalFactors, ChiangHair, LobeTerms, Offsets, OffsetsIn, Outgoing, PairAngles, CHIANG_LOBES,
@@ -154,6 +159,30 @@ impl<R: Real> OffsetNodes<R> {
         OffsetNodes {
             nodes: rounded(rule.nodes.iter().copied()),
             pairs: rounded(rule.mirrored_pairs().into_iter()),
+        }
+    }
+}
+
+impl<L: BatchLanes> OffsetNodes<L> {
+    /// The mirrored pairs of `nodes` spread over the lanes, for one query at a time in every
+    /// lane ([`crate::bcsdf::HostFarField`]): lane k of the j-th element holds pair
+    /// `j * L::LANES + k`, the lanes past the last pair `h = 0` with weight 0. The far field's
+    /// node sum then leaves in lane k the part of the pairs it holds, and the sum over the
+    /// lanes is the far field. The nodes themselves, which sampling chooses from, are in
+    /// every lane as in [`OffsetNodes::new`].
+    pub(crate) fn spread_over_lanes(nodes: &OffsetNodes<f64>) -> Self {
+        let lane = |element: usize, k: usize, field: usize| {
+            nodes
+                .pairs
+                .get(element * L::LANES + k)
+                .map_or(0.0, |pair| pair[field] as f32)
+        };
+        let pairs = (0..nodes.pairs.len().div_ceil(L::LANES))
+            .map(|j| [0, 1].map(|field| L::from_fn(|k| lane(j, k, field))))
+            .collect();
+        OffsetNodes {
+            nodes: nodes.cast::<L>().nodes,
+            pairs,
         }
     }
 }

@@ -13,8 +13,8 @@
 //! ([`eval_batch`]'s module documentation).
 
 use super::batch::{
-    check, check_soa_lengths, eval_samples, eval_soa_samples, BatchError, BatchEval, BatchReal,
-    DirectionSlices, RgbSlices,
+    check, check_soa_lengths, eval_samples, eval_soa_samples, BatchError, BatchEval, BatchLanes,
+    BatchReal, DirectionSlices, RgbSlices,
 };
 use super::model::Model;
 use crate::real::InstructionSet;
@@ -47,7 +47,7 @@ pub struct HostBatch<M: Model> {
 
 /// The model on the lanes of its instruction set. A variant for AVX-512 or AVX2 is only built
 /// on a CPU that supports it: their lanes execute those instructions (`crate::real::isa`).
-enum HostLanes<M: Model> {
+pub(super) enum HostLanes<M: Model> {
     #[cfg(target_arch = "x86_64")]
     Avx512(M::In<Avx512Lanes>),
     #[cfg(target_arch = "x86_64")]
@@ -85,6 +85,52 @@ macro_rules! on_lanes {
     };
 }
 
+pub(super) use on_lanes;
+
+/// How a model is put on lanes: [`Model::instantiate`] for [`HostBatch`], the far field with
+/// its node pairs spread over the lanes for [`HostFarField`](super::HostFarField).
+pub(super) trait OnLanes<M: Model> {
+    /// The model on the lanes `L`.
+    fn on_lanes<L: BatchLanes>(&self) -> M::In<L>;
+}
+
+impl<M: Model> OnLanes<M> for M {
+    fn on_lanes<L: BatchLanes>(&self) -> M::In<L> {
+        self.instantiate()
+    }
+}
+
+impl<M: Model> HostLanes<M> {
+    /// `model` on the lanes of `set`, or of the widest set narrower than `set` that the CPU
+    /// supports; on the baseline if its kernel is not inlined throughout
+    /// ([`Model::INLINED_KERNEL`]).
+    pub(super) fn on(set: InstructionSet, model: &impl OnLanes<M>) -> Self {
+        let run = InstructionSet::ALL
+            .into_iter()
+            .skip_while(|s| *s != set)
+            .find(|s| s.is_supported() && (M::INLINED_KERNEL || *s == InstructionSet::Baseline))
+            .unwrap_or(InstructionSet::Baseline);
+        match run {
+            #[cfg(target_arch = "x86_64")]
+            InstructionSet::Avx512 => HostLanes::Avx512(model.on_lanes()),
+            #[cfg(target_arch = "x86_64")]
+            InstructionSet::Avx2 => HostLanes::Avx2(model.on_lanes()),
+            _ => HostLanes::Baseline(model.on_lanes()),
+        }
+    }
+
+    /// The instruction set of the lanes.
+    pub(super) fn instruction_set(&self) -> InstructionSet {
+        match self {
+            #[cfg(target_arch = "x86_64")]
+            HostLanes::Avx512(_) => InstructionSet::Avx512,
+            #[cfg(target_arch = "x86_64")]
+            HostLanes::Avx2(_) => InstructionSet::Avx2,
+            HostLanes::Baseline(_) => InstructionSet::Baseline,
+        }
+    }
+}
+
 impl<M: Model> HostBatch<M> {
     /// `model` on the lanes of the host's widest instruction set ([`InstructionSet::host`]).
     pub fn new(model: &M) -> Self {
@@ -96,30 +142,14 @@ impl<M: Model> HostBatch<M> {
     /// A model whose kernel is not inlined throughout ([`Model::INLINED_KERNEL`]) runs on the
     /// build's lanes ([`InstructionSet::Baseline`]).
     pub fn on(set: InstructionSet, model: &M) -> Self {
-        let supported = InstructionSet::ALL
-            .into_iter()
-            .skip_while(|s| *s != set)
-            .find(|s| s.is_supported() && (M::INLINED_KERNEL || *s == InstructionSet::Baseline))
-            .unwrap_or(InstructionSet::Baseline);
-        let lanes = match supported {
-            #[cfg(target_arch = "x86_64")]
-            InstructionSet::Avx512 => HostLanes::Avx512(model.instantiate()),
-            #[cfg(target_arch = "x86_64")]
-            InstructionSet::Avx2 => HostLanes::Avx2(model.instantiate()),
-            _ => HostLanes::Baseline(model.instantiate()),
-        };
-        HostBatch { lanes }
+        HostBatch {
+            lanes: HostLanes::on(set, model),
+        }
     }
 
     /// The instruction set the evaluations run on.
     pub fn instruction_set(&self) -> InstructionSet {
-        match self.lanes {
-            #[cfg(target_arch = "x86_64")]
-            HostLanes::Avx512(_) => InstructionSet::Avx512,
-            #[cfg(target_arch = "x86_64")]
-            HostLanes::Avx2(_) => InstructionSet::Avx2,
-            HostLanes::Baseline(_) => InstructionSet::Baseline,
-        }
+        self.lanes.instruction_set()
     }
 
     /// [`eval_batch`](super::eval_batch) on this instruction set's lanes: `S(wi[k], wo[k],

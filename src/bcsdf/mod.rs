@@ -1,7 +1,8 @@
 //! The model contract ([`Bcsdf`], [`SampledBcsdf`], [`Model`]), the generic consumers that come
 //! with it (batch evaluation, tracing), and the reference models:
 //! Chiang et al. 2016's near field ([`ChiangHair`]) and far field ([`ChiangFarField`],
-//! [`ReferenceFarField`]), and Marschner et al. 2003 ([`Marschner2003`]).
+//! [`ReferenceFarField`]; [`HostFarField`] runs the far field's nodes in SIMD lanes), and
+//! Marschner et al. 2003 ([`Marschner2003`]).
 //!
 //! # Adding a model
 //!
@@ -18,6 +19,7 @@ mod batch;
 mod chiang;
 mod far_field;
 mod host;
+mod host_far_field;
 mod inputs;
 mod marschner;
 mod model;
@@ -42,6 +44,7 @@ pub use far_field::{
     REFERENCE_REL_TOL,
 };
 pub use host::HostBatch;
+pub use host_far_field::HostFarField;
 pub use inputs::{
     AbsorptionInput, FromInputs, Input, InputKind, InputValue, InputValues, HAIR_INPUTS,
 };
