@@ -438,7 +438,7 @@ fn peer_style(n: usize, threads: usize) {
             };
             let aos = best(eval, &mut out);
             let soa = best_soa(&batch, &wi_soa, &wo_soa, &h, &mut rgb, &pool);
-            format!("{set:?} {aos:.1} ns, {set:?}-soa {soa:.1} ns")
+            format!("{set:?} {aos:.2} ns, {set:?}-soa {soa:.2} ns")
         })
         .collect();
     let mean: f64 = out
@@ -447,8 +447,8 @@ fn peer_style(n: usize, threads: usize) {
         .sum::<f64>()
         / (3 * n) as f64;
     println!(
-        "hairmath batch eval (N={n}, threads={threads}, best of 5 after warm-up): f32x8 {x8:.1} ns, \
-         f32x16 {x16:.1} ns, HostBatch on {} per evaluation (mean value {mean:.5})",
+        "hairmath batch eval (N={n}, threads={threads}, best of 5 after warm-up): f32x8 {x8:.2} ns, \
+         f32x16 {x16:.2} ns, HostBatch on {} per evaluation (mean value {mean:.5})",
         sets.join(", ")
     );
 }

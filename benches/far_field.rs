@@ -118,7 +118,7 @@ fn bench_eval(c: &mut Criterion) {
         .collect();
     let mut g = c.benchmark_group("far_field_eval");
     g.throughput(Throughput::Elements(N as u64));
-    for nodes in [8, 32, 64] {
+    for nodes in [8, 32, 64, 128, 512] {
         let rule = FarFieldRule::gauss_legendre(nodes).expect("valid node count");
         let far64 = ChiangFarField::<f64>::with_rule(&params(), &rule);
         let lanes = HostFarField::new(&far64);
