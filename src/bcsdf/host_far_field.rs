@@ -1,18 +1,5 @@
-//! The fixed-node far field one query at a time, its node pairs spread over the lanes of the
-//! host's widest instruction set.
-//!
-//! [`ChiangFarField`] evaluated in scalar `f32` walks its mirrored pairs of nodes one at a
-//! time; [`HostBatch`](super::HostBatch) puts queries in the lanes, which suits a wavefront
-//! renderer but not one that shades a single hit. [`HostFarField`] puts the rule's pairs in
-//! the lanes instead: the query is the same in every lane, lane k sums the pairs
-//! `k, k + LANES, ...` ([`OffsetNodes`]' spread form), and the value is the sum over the lanes.
-//! Everything else is the far field's generic code (the same `M_p`, paths and logistics),
-//! compiled for the instruction set found at run time as [`HostBatch`](super::HostBatch)'s
-//! kernels are. With 64 nodes on AVX-512 the 32 pairs take two steps of sixteen lanes.
-//!
-//! **Accuracy.** The lanes add the pairs in another order than the scalar loop and fuse
-//! their multiply-adds, so the value differs from scalar `f32`'s by rounding; the tests hold
-//! every instruction set to the batch's bound against `f64` with the same rule.
+//! [`HostFarField`]: the fixed-node far field one query at a time, its mirrored pairs of
+//! nodes spread over the lanes of the host's widest instruction set.
 
 use super::chiang::{ChiangHair, CHIANG_LOBES};
 use super::far_field::{ChiangFarField, OffsetNodes};
@@ -33,8 +20,10 @@ use crate::real::{with_avx2, with_avx512};
 /// generic code, compiled for the instruction set found at run time as
 /// [`HostBatch`](super::HostBatch)'s kernels are. With 64 nodes on AVX-512 the 32 pairs take
 /// two steps of sixteen lanes (9 times faster than scalar `f32` on the development machine,
-/// README "Speed"). Against the same rule in `f64`: within 2e-5 relative to the value +
-/// 1e-6 on every instruction set (tests; 8.4e-6 measured at worst). [`Bcsdf::eval`] and
+/// README "Speed"). The lanes add the pairs in another order than the scalar loop and fuse
+/// their multiply-adds, so the values differ from scalar `f32`'s by rounding; against the
+/// same rule in `f64` they are within 2e-5 relative to the value + 1e-6 on every instruction
+/// set (tests; 8.4e-6 measured at worst). [`Bcsdf::eval`] and
 /// [`SampledBcsdf::pdf`] are inlined into the instruction set's copy; [`Bcsdf::eval_lobes`]
 /// and [`SampledBcsdf::sample`] give the same values but call the lanes' intrinsics out of
 /// line (slower).
