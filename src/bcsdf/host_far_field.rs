@@ -55,7 +55,10 @@ impl HostFarField {
     }
 
     /// `far` on the lanes of `set`, or of the widest set narrower than `set` that the CPU
-    /// supports ([`HostFarField::instruction_set`] tells which).
+    /// supports ([`HostFarField::instruction_set`] tells which). A query is one chain of
+    /// dependent operations, so narrower lanes can be faster for a small rule: on the
+    /// development machine's Zen 4, AVX2 beat AVX-512 up to 32 nodes and lost at 64 (README,
+    /// "Speed").
     pub fn on(set: InstructionSet, far: &ChiangFarField<f64>) -> Self {
         HostFarField {
             lanes: HostLanes::on(set, &Spread(far)),
