@@ -1,5 +1,6 @@
 //! Cost of the far-field N_p integrators and of the far-field BCSDF: the adaptive f64 reference,
-//! the fixed-node rule at several node counts in f64 and f32, a baked far-field N_p table's
+//! the nodes placed per lobe (`AlignedFarField`), the fixed-node rule at several node counts in
+//! f64 and f32, a baked far-field N_p table's
 //! trilinear lookup (the real-time alternative), and full far-field evaluation (also with the
 //! node pairs in SIMD lanes, `HostFarField`).
 //! Each iteration processes the same 256 deterministic (theta_o, phi) pairs; criterion's time
@@ -10,7 +11,9 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use hairmath::bcsdf::{Bcsdf, ChiangFarField, ChiangHair, FarFieldRule, HostFarField, Query};
+use hairmath::bcsdf::{
+    AlignedFarField, Bcsdf, ChiangFarField, ChiangHair, FarFieldRule, HostFarField, Query,
+};
 use hairmath::geometry::{local_direction, V3};
 use hairmath::lut::{bake, FarFieldN};
 use hairmath::params::{AzimuthalRoughness, HairParams};
@@ -48,7 +51,20 @@ fn bench_np(c: &mut Criterion) {
             }
         })
     });
-    for nodes in [16, 32, 64] {
+    for nodes in [8, 16, 24] {
+        let aligned = AlignedFarField::new(&params(), nodes).expect("valid node count");
+        g.bench_function(
+            BenchmarkId::new("aligned", format!("{nodes} per branch")),
+            |b| {
+                b.iter(|| {
+                    for &(s, co, phi) in &xs {
+                        black_box(aligned.azimuthal(s, co, phi));
+                    }
+                })
+            },
+        );
+    }
+    for nodes in [16, 32, 64, 128, 512] {
         let rule = FarFieldRule::gauss_legendre(nodes).expect("valid node count");
         fast(
             &mut g,

@@ -1,7 +1,8 @@
 //! The model contract ([`Bcsdf`], [`SampledBcsdf`], [`Model`]), the generic consumers that come
 //! with it (batch evaluation, tracing), and the reference models:
 //! Chiang et al. 2016's near field ([`ChiangHair`]) and far field ([`ChiangFarField`],
-//! [`ReferenceFarField`]; [`HostFarField`] runs the far field's nodes in SIMD lanes), and
+//! [`ReferenceFarField`]; [`HostFarField`] runs the far field's nodes in SIMD lanes;
+//! [`AlignedFarField`] places its nodes per lobe where the lobe lives), and
 //! Marschner et al. 2003 ([`Marschner2003`]).
 //!
 //! # Adding a model
@@ -15,6 +16,7 @@
 //! inputs) gives it shader code with varying inputs ([`trace_shader`]) and, registered with
 //! [`crate::registry::ModelEntry::with_shader`], a shader form in the registry.
 
+mod aligned_far_field;
 mod batch;
 mod chiang;
 mod far_field;
@@ -26,6 +28,9 @@ mod model;
 mod varying;
 
 pub use crate::real::InstructionSet;
+pub use aligned_far_field::{
+    AlignedFarField, ALIGNED_FAR_FIELD_ERROR_BOUNDS, MAX_NODES_PER_BRANCH,
+};
 pub(crate) use batch::{check as check_lengths, check_samples, eval_samples, pdf_samples};
 pub use batch::{
     eval_batch, eval_batch_soa, pdf_batch, BatchError, BatchEval, BatchLanes, BatchLengthError,
