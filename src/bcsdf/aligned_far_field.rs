@@ -55,6 +55,7 @@
 //! panels, Newton iterations), which shader code and the batch kernels do not do.
 
 use super::chiang::{ChiangHair, LobeTerms, PairAngles, CHIANG_LOBES};
+use super::far_field::add_weighted;
 use super::model::{Bcsdf, Query};
 use crate::absorption::PathLength;
 use crate::azimuthal::{exit_angle, logistic, Refraction, LOBES_WITH_RESIDUAL};
@@ -373,9 +374,7 @@ impl AlignedFarField {
             let gamma = FRAC_PI_4 * (half + y);
             let a = self.attenuation(geometry, 3, gamma);
             let weight = w * FRAC_PI_4 * gamma.cos() / TAU;
-            for (s, a) in sum.iter_mut().zip(a) {
-                *s += weight * a;
-            }
+            add_weighted(&mut sum, weight, &a);
         }
         sum
     }
@@ -385,9 +384,7 @@ impl AlignedFarField {
         let mut sum = [0.0; 3];
         for branch in geometry.branches(p) {
             let part = self.branch(geometry, p, phi, &branch);
-            for (s, x) in sum.iter_mut().zip(part) {
-                *s += x;
-            }
+            add_weighted(&mut sum, 1.0, &part);
         }
         sum
     }
@@ -449,9 +446,7 @@ impl AlignedFarField {
             let d = self.hair.logistic().density(wrap_angle(v));
             let weight = w * (g1 - g0) * 0.5 * gamma.cos() * d;
             let a = self.attenuation(geometry, p, gamma);
-            for (s, a) in sum.iter_mut().zip(a) {
-                *s += weight * a;
-            }
+            add_weighted(&mut sum, weight, &a);
         }
         sum
     }
@@ -495,9 +490,7 @@ impl AlignedFarField {
                 let d = self.hair.logistic().density(wrapped);
                 let weight = w * dtau * 0.5 * gamma.cos() * d / (slope * density);
                 let a = self.attenuation(geometry, p, gamma);
-                for (s, a) in sum.iter_mut().zip(a) {
-                    *s += weight * a;
-                }
+                add_weighted(&mut sum, weight, &a);
             }
         }
         sum

@@ -221,7 +221,7 @@ const NODES_WITH_PDF: ShaderLoop = ShaderLoop {
 
 /// `sums[k] += weight * values[k]`.
 #[inline(always)]
-fn add_weighted<R: Real>(sums: &mut [R], weight: R, values: &[R]) {
+pub(super) fn add_weighted<R: Real>(sums: &mut [R], weight: R, values: &[R]) {
     for (s, &v) in sums.iter_mut().zip(values) {
         *s += weight * v;
     }
