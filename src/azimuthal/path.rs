@@ -66,6 +66,20 @@ impl<R: Real> Refraction<R> {
         h * self.cos_theta * self.inv_eta * self.inv_cos_theta_t
     }
 
+    /// The Fresnel reflectance at the entry point of the ray whose in-plane angles of incidence
+    /// and refraction have cosines `cos_gamma_o` and `cos_gamma_t`. The cosines of the incident
+    /// and refracted directions to the surface normal are the normal components of the Bravais
+    /// split (Marschner et al. 2003, section 3): `cos theta cos gamma_o` and `cos theta_t cos
+    /// gamma_t`.
+    #[inline(always)]
+    pub(crate) fn entry_fresnel(&self, cos_gamma_o: R, cos_gamma_t: R) -> R {
+        fresnel_of_cosines(
+            self.cos_theta * cos_gamma_o,
+            self.cos_theta_t * cos_gamma_t,
+            self.eta,
+        )
+    }
+
     /// The path of the ray entering at offset `h` (clamped to [-1, 1]), with internal segments
     /// of the length model `length`. The asines are written with the cosines the path needs
     /// anyway, `gamma = atan2(sin, cos)` ([`crate::real::safe_asin`] computes them the same
@@ -87,13 +101,7 @@ impl<R: Real> Refraction<R> {
                 let sin_gamma_t = self.sin_gamma_t(h);
                 let cos_gamma_t = safe_sqrt((-sin_gamma_t).mul_add(sin_gamma_t, one));
                 let cos_gamma_o = cos_of_offset(h);
-                // The cosines of the incident and refracted directions to the surface normal:
-                // the normal components of the Bravais split (Marschner et al. 2003, section 3).
-                let fresnel = fresnel_of_cosines(
-                    self.cos_theta * cos_gamma_o,
-                    self.cos_theta_t * cos_gamma_t,
-                    self.eta,
-                );
+                let fresnel = self.entry_fresnel(cos_gamma_o, cos_gamma_t);
                 [
                     h.asin_with_cos(cos_gamma_o),
                     sin_gamma_t.asin_with_cos(cos_gamma_t),
