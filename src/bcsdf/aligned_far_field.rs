@@ -38,22 +38,20 @@
 //!
 //! # Cost and accuracy
 //!
-//! Each node costs typically two or three evaluations of the exit angle (the Halley
-//! iterations) and one of the attenuations, which take the cosines of the last. R and TT have
-//! one branch; TRT two or three. Against the reference
-//! integrator ([`ALIGNED_FAR_FIELD_ERROR_BOUNDS`] and the tests of this module), with 16 nodes
-//! per branch the error is at most 6.3e-5 of the value (plus 1e-6 of the lobe's peak) on the
-//! documented grid for beta_n from 0.05 to 1 (at 0.4; 3.8e-5 outside 0.35 to 0.45), and
-//! 1.1e-4 over 300 random configurations (roughness, index 1.3 to 2, tilt, absorption,
-//! inclination, azimuth). Near TRT's cusp,
-//! where its two caustics merge (`2 k` within 0.05 of 1, `k = 1 / eta'`), the integrand in
-//! the mass coordinate goes from a -1/2 to a -2/3 power singularity, which no fixed power map
-//! fits: there a caustic's panel takes a map from the exit angle's Taylor cubic at the
-//! caustic ([`cusp_map`]), 3.1e-5 at most for beta_n up to 0.3, and wider D (s > 0.125) the
-//! integral over gamma itself, where the exit angle is nearly flat, cut at D's kinks: 7.3e-5
-//! at most (test `near_the_cusp`, 14 offsets of `2 k` from 1 down to 3e-5).
-//! The README's far-field section tabulates it beside the fixed rule, with the time per
-//! evaluation.
+//! Each node costs typically two or three evaluations of the exit angle (the Halley iterations)
+//! and one of the attenuations, which take the cosines of the last. R and TT have one branch;
+//! TRT two or three. Against the reference integrator ([`ALIGNED_FAR_FIELD_ERROR_BOUNDS`] and
+//! the tests of this module), with 16 nodes per branch the error is at most 6.3e-5 of the value
+//! (plus 1e-6 of the lobe's peak) on the documented grid for beta_n from 0.05 to 1 (at 0.4;
+//! 3.8e-5 outside 0.35 to 0.45), and 1.1e-4 over 300 random configurations (roughness, index
+//! 1.3 to 2, tilt, absorption, inclination, azimuth). Near TRT's cusp, where its two caustics
+//! merge (`2 k` within 0.05 of 1, `k = 1 / eta'`), the integrand in the mass coordinate goes
+//! from a -1/2 to a -2/3 power singularity, which no fixed power map fits: there a caustic's
+//! panel takes a map from the exit angle's Taylor cubic at the caustic ([`cusp_map`]), 3.1e-5
+//! at most for beta_n up to 0.3, and wider D (s > 0.125) the integral over gamma itself, where
+//! the exit angle is nearly flat, cut at D's kinks: 7.3e-5 at most (test `near_the_cusp`, 14
+//! offsets of `2 k` from 1 down to 3e-5). The README's far-field section tabulates it beside
+//! the fixed rule, with the time per evaluation.
 //!
 //! It is an `f64`, CPU-only integrator: the node placement depends on the query (branches,
 //! panels, Halley iterations), which shader code and the batch kernels do not do.
