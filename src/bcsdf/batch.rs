@@ -357,6 +357,7 @@ fn for_each_chunk<L: BatchLanes, T: Copy, const CHECK: bool>(
 ) -> Result<(), BatchError> {
     let n = L::LANES;
     let full = wi.len() / n * n;
+    let out_lines = out.as_ptr();
     let chunks = wi[..full]
         .chunks_exact(n)
         .zip(wo[..full].chunks_exact(n))
@@ -364,6 +365,11 @@ fn for_each_chunk<L: BatchLanes, T: Copy, const CHECK: bool>(
         .zip(out[..full].chunks_exact_mut(n))
         .enumerate();
     for (chunk, (((wi_k, wo_k), h_k), out_k)) in chunks {
+        let ahead = chunk * n + PREFETCH_AHEAD;
+        prefetch(wi.as_ptr().wrapping_add(ahead), n);
+        prefetch(wo.as_ptr().wrapping_add(ahead), n);
+        prefetch(h.as_ptr().wrapping_add(ahead), n);
+        prefetch(out_lines.wrapping_add(ahead), n);
         let (i, o) = (load_dirs(wi_k), load_dirs(wo_k));
         let h_lanes = L::from_fn(
             #[inline(always)]
@@ -378,6 +384,33 @@ fn for_each_chunk<L: BatchLanes, T: Copy, const CHECK: bool>(
     }
     let rest = (&wi[full..], &wo[full..], &h[full..]);
     padded::<L, T, CHECK>(rest, &mut out[full..], &mut f).map_err(|e| e.shifted(full))
+}
+
+/// How far ahead of the chunk it evaluates a batch loop asks for its slices' memory
+/// ([`prefetch`]), in samples: eight chunks of sixteen. The batch streams seven to ten slices
+/// (structure of arrays) through the caches, which the CPU's own prefetchers follow less
+/// well: on 2 million samples, one thread, AVX-512, an Intel Xeon (README, speed section),
+/// the structure of arrays took about 10% longer per sample than on 50,000 in cache without
+/// it; 64, 128 and 256 samples ahead measured alike, 32 less well.
+const PREFETCH_AHEAD: usize = 128;
+
+/// Asks the CPU to bring the cache lines of the `count` values from `first` into its caches
+/// (`prefetcht0`, SSE: every x86-64 CPU). A hint, not an access: any address will do, past
+/// the end of a slice included, and nothing is read. Nothing on other architectures.
+#[inline(always)]
+fn prefetch<T>(first: *const T, count: usize) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use core::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        let first = first.cast::<i8>();
+        for byte in (0..count * core::mem::size_of::<T>()).step_by(64) {
+            // SAFETY: a prefetch reads nothing and cannot fault, whatever the address; SSE is
+            // part of x86-64.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(first.wrapping_add(byte)) };
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = (first, count);
 }
 
 /// At most `L::LANES` samples through `f`, padded with [`PAD_DIR`] and [`PAD_H`]; `CHECK`:
@@ -584,6 +617,10 @@ pub(crate) fn eval_soa_samples<L: BatchLanes, M: Bcsdf<L>>(
 ) -> Result<(), BatchError> {
     let len = h.len();
     for start in (0..len).step_by(L::LANES) {
+        let ahead = start + PREFETCH_AHEAD;
+        for slice in [wi.x, wi.y, wi.z, wo.x, wo.y, wo.z, h, out.r, out.g, out.b] {
+            prefetch(slice.as_ptr().wrapping_add(ahead), L::LANES);
+        }
         let (i, o) = (soa_direction(&wi, start), soa_direction(&wo, start));
         let h_lanes = soa_lanes(h, start, PAD_H);
         let end = (start + L::LANES).min(len);
