@@ -136,7 +136,8 @@ const LOWEST_EXP_ARGUMENT: f32 = -87.336_54;
 const EXPONENT_BIAS_MAGIC: f32 = 8_388_608.0 + 127.0;
 
 /// [`lean_exp`] for arguments `x <= 0` ([`Real::exp_of_nonpositive`]): clamped below at
-/// -87.34 (`vmaxps` also turns NaN into the clamp), no edge selects, and the degree-5
+/// -87.34 by [`Real::max`], which also turns NaN into the clamp (`maxps` on x86, `fmaxnm` on
+/// aarch64: NEON's `fmax` would keep the NaN), no edge selects, and the degree-5
 /// [`EXP_MINIMAX`] (r is never capped here, so |f| <= ln 2 / 2). The rounding of c log2(e) to
 /// the integer r and the biased exponent of 2^r come from one multiply-add: `c log2(e) +
 /// EXPONENT_BIAS_MAGIC`, rounded once, holds r + 127 in its low bits, and r is that minus the
@@ -146,7 +147,7 @@ const EXPONENT_BIAS_MAGIC: f32 = 8_388_608.0 + 127.0;
 /// degree 7).
 macro_rules! lean_exp_of_nonpositive {
     ($t:ident, $x:expr) => {{
-        let c = $x.fast_max($t::splat(LOWEST_EXP_ARGUMENT));
+        let c = Real::max($x, $t::splat(LOWEST_EXP_ARGUMENT));
         let magic = $t::splat(EXPONENT_BIAS_MAGIC);
         let biased = c.mul_add($t::LOG2_E, magic);
         let f = cody_waite_reduced!($t, c, biased - magic);
@@ -332,13 +333,31 @@ macro_rules! impl_real_for_lanes {
             fn abs(self) -> Self {
                 $t::abs(self)
             }
+            /// A NaN `self` gives `other`, as the scalar [`Real::min`] does: x86's `minps`
+            /// (`fast_min`) does so, NEON's `fmin` (`fast_min` there) would give NaN, its
+            /// `fminnm` (`wide`'s `min` there, as fast) gives `other`.
             #[inline(always)]
             fn min(self, other: Self) -> Self {
-                $t::fast_min(self, other)
+                #[cfg(target_arch = "aarch64")]
+                {
+                    $t::min(self, other)
+                }
+                #[cfg(not(target_arch = "aarch64"))]
+                {
+                    $t::fast_min(self, other)
+                }
             }
+            /// A NaN `self` gives `other` ([`Real::min`]'s note).
             #[inline(always)]
             fn max(self, other: Self) -> Self {
-                $t::fast_max(self, other)
+                #[cfg(target_arch = "aarch64")]
+                {
+                    $t::max(self, other)
+                }
+                #[cfg(not(target_arch = "aarch64"))]
+                {
+                    $t::fast_max(self, other)
+                }
             }
             #[inline(always)]
             fn lt(self, other: Self) -> Self {
