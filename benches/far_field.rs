@@ -2,7 +2,8 @@
 //! the nodes placed per lobe (`AlignedFarField`), the fixed-node rule at several node counts in
 //! f64 and f32, a baked far-field N_p table's
 //! trilinear lookup (the real-time alternative), and full far-field evaluation (also with the
-//! node pairs in SIMD lanes, `HostFarField`).
+//! node pairs in SIMD lanes, `HostFarField`); at beta_n = 0.05 the aligned rule against the
+//! fixed rule at 512 nodes.
 //! Each iteration processes the same 256 deterministic (theta_o, phi) pairs; criterion's time
 //! divided by 256 is the cost of one N_p evaluation (all four lobes, three channels).
 //!
@@ -51,10 +52,10 @@ fn bench_np(c: &mut Criterion) {
             }
         })
     });
-    for nodes in [8, 16, 24] {
+    for nodes in [4, 6, 8, 12] {
         let aligned = AlignedFarField::new(&params(), nodes).expect("valid node count");
         g.bench_function(
-            BenchmarkId::new("aligned", format!("{nodes} per branch")),
+            BenchmarkId::new("aligned", format!("{nodes} per half-branch")),
             |b| {
                 b.iter(|| {
                     for &(s, co, phi) in &xs {
@@ -97,6 +98,35 @@ fn bench_np(c: &mut Criterion) {
             }
         })
     });
+    g.finish();
+}
+
+/// At beta_n = 0.05, where the fixed rule needs 512 nodes for 1e-3: the aligned rule at 8
+/// nodes per half-branch (16 per lobe at most) against the fixed rule at 512.
+fn bench_np_low_roughness(c: &mut Criterion) {
+    let p = HairParams {
+        beta_n: AzimuthalRoughness::new(0.05).expect("valid roughness"),
+        ..params()
+    };
+    let xs = angles();
+    let mut g = c.benchmark_group("far_field_np_beta_n_0.05");
+    g.throughput(Throughput::Elements(N as u64));
+    g.sample_size(10);
+    let aligned = AlignedFarField::new(&p, 8).expect("valid node count");
+    g.bench_function(BenchmarkId::new("aligned", "8 per half-branch"), |b| {
+        b.iter(|| {
+            for &(s, co, phi) in &xs {
+                black_box(aligned.azimuthal(s, co, phi));
+            }
+        })
+    });
+    let rule = FarFieldRule::gauss_legendre(512).expect("valid node count");
+    fast(
+        &mut g,
+        "f64 512 nodes",
+        &ChiangFarField::<f64>::with_rule(&p, &rule),
+        &xs,
+    );
     g.finish();
 }
 
@@ -164,5 +194,5 @@ fn eval_each<R: Real>(
     });
 }
 
-criterion_group!(benches, bench_np, bench_eval);
+criterion_group!(benches, bench_np, bench_np_low_roughness, bench_eval);
 criterion_main!(benches);

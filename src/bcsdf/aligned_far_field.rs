@@ -1,60 +1,84 @@
 //! The far field with its nodes placed per lobe where the lobe's azimuthal distribution lives:
 //! an `f64` integrator of `N_p(phi) = 1/2 int A_p(h) D(phi - Phi(p, h)) dh` (Chiang et al.
 //! 2016, eq. 8; the notation of [`crate::bcsdf::ChiangFarField`]) that stays accurate at low
-//! azimuthal roughness with few nodes, where the fixed rule over h needs hundreds.
+//! azimuthal roughness with 16 nodes per lobe, where the fixed rule over h needs hundreds.
 //!
-//! # The change of variables
+//! # Folding
 //!
-//! Over gamma = asin h the integral is `int cos(gamma) A_p(sin gamma) D(v(gamma)) / 2 dgamma`
-//! with `v = phi - Phi(p, gamma)` the argument of the trimmed logistic D. On a stretch where
-//! the exit angle is monotone (a *branch*: all of [-pi/2, pi/2] for R and TT; for TRT, when
-//! `eta' <= 2`, three branches split at the caustics `+-gamma_c`, where `dPhi/dgamma = 0`,
-//! Marschner et al. 2003, section 4.2), the integral becomes one over v, and then over the mass
-//! coordinate `tau(v)` of a logistic of scale `sigma` about v = 0, continued across the periods
-//! of the circle (`d tau = l_sigma(v) dv`):
+//! Over gamma = asin h the integral is `int cos(gamma) A_p(sin gamma) D(phi - Phi(p, gamma)) / 2
+//! dgamma` over [-pi/2, pi/2], D the trimmed logistic. The exit angle is odd about `p pi`
+//! (`Phi(p, -gamma) = 2 p pi - Phi(p, gamma)`, gamma_t being odd in gamma) and A_p even, and D
+//! is even and continued with period 2 pi, so the half gamma < 0 at azimuth phi is the half
+//! gamma > 0 at -phi: the integral is one over [0, pi/2] against the *folded* weight
+//! `D(phi - Phi) + D(-phi - Phi)`.
 //!
-//! `int cos(gamma) A_p D(v) / (2 |Phi'(gamma)| l_sigma(v)) d tau`.
+//! # The Gauss rule of the measure
 //!
-//! With `sigma = s` (D's own scale) the logistic would be absorbed exactly, but the rest,
-//! smooth in v on a scale of 1, would vary like `ln(1 - tau)` in the tails, where Gauss
-//! rules converge slowly (about `1/n^2`: 6e-4 of the value at 16 nodes in the prototype). A
-//! wider `sigma` leaves the ratio `D / l_sigma`, which decays like a power of the distance of
-//! tau from the tail's end and so damps that region: `sigma = 2.5 s` on panels that hold the
-//! peak (`v = 0` mod 2 pi) and `4 s` on panels in the tails (chosen by measurement: 2, 2.25,
-//! 2.5, 3 and 4 for the first, 3, 3.5, 4, 5 and 7 for the second).
+//! On a stretch of [0, pi/2] where the exit angle is monotone (a *half-branch*: all of it for R
+//! and TT; for TRT, when `eta' <= 2`, [0, gamma_c] and [gamma_c, pi/2], split at the caustic
+//! where `dPhi/dgamma = 0`, Marschner et al. 2003, section 4.2) the integral becomes one over
+//! the exit angle c,
 //!
-//! The panels of a branch are cut where v wraps through pi (D's kink). On a panel that ends at
-//! a caustic the integrand has an inverse square-root singularity in tau (`|Phi'|` vanishes
-//! like the square root of `Phi_c - Phi`); there `tau = tau_c + L y^2` (one such end) or
-//! `L (1 - cos(pi y)) / 2` (both) makes it smooth in y. Without caustics (`p k < 1`) TRT's
-//! branch is split at gamma = 0, where its slope is smallest, with the same maps there. Each
-//! branch has the same number of Gauss-Legendre nodes in total, shared among its panels in
-//! proportion to the square root of their mass in tau (at least one each). At every node the
-//! offset is found by safeguarded Halley iteration on the branch (`Phi(gamma) = phi - v`; the
-//! exit angle's curvature has a closed form), starting from the previous node's offset.
+//! `int (D(phi - c) + D(-phi - c)) g(c) dc`, with `g = cos(gamma) A_p / (2 |Phi'(gamma)|)`.
 //!
-//! The residual lobe's `N_3 = 1/(2 pi) int A_3 / 2 dh` has a smooth integrand in gamma and
-//! takes the same number of Gauss-Legendre nodes on each half of [0, pi/2].
+//! The weight, the folded *measure*, is D alone, known in closed form and cheap. The rest is
+//! smooth in a coordinate x in [0, 1] of c ([`ExitAngleCoordinate`]): linear, except at a
+//! caustic end, where g has an inverse square-root singularity and `c = c_c + L x^2` (for TRT
+//! without caustics, `p k < 1`, its end at gamma = 0, where the slope is smallest, takes the
+//! exit angle's Taylor cubic there, [`cusp_map`]). The rule is the Gauss rule of the measure in
+//! x ([`crate::quadrature::gauss_rule_of_measure`]): its n nodes integrate exactly when `g
+//! dc/dx` is a polynomial of degree below 2n in x, and they sit where the measure lives, about
+//! D's peaks. The measure is known through a fine rule (next section) that evaluates only D;
+//! only the Gauss rule's n nodes take the costly part, the exit angle's root (safeguarded
+//! Halley iteration on the half-branch, the curvature in closed form, each from the previous
+//! node's root) and the attenuations. With n nodes per half-branch R and TT take n, TRT 2n,
+//! shared equally by its half-branches.
+//!
+//! # The fine rule of the measure
+//!
+//! Over the mass coordinate `tau(v)` of a logistic of scale `sigma` about `v = phi - c = 0`,
+//! continued across the periods of the circle (`d tau = l_sigma(v) dv`), the measure is `D(v)
+//! / l_sigma(v) d tau`. With `sigma = s` (D's own scale) the logistic would be absorbed
+//! exactly, but anything smooth in v would vary like `ln(1 - tau)` in the tails, where Gauss
+//! rules converge slowly; a wider `sigma` leaves `D / l_sigma`, which decays like a power of
+//! the distance of tau from the tail's end: `sigma = 2.5 s` on panels that hold the peak (`v =
+//! 0` mod 2 pi) and `4 s` on panels in the tails (chosen by measurement). A half-branch's
+//! panels are cut where v wraps through pi (D's kink); on a panel that ends at a caustic
+//! `tau = tau_c + L y^2` (the cusp map near TRT's cusp) matches the Gauss rule's coordinate.
+//! The panels share [`MEASURE_NODES`] Gauss-Legendre nodes (or twice the rule's nodes, if
+//! more) in proportion to the square root of their mass in tau, for phi and again for -phi.
+//!
+//! # TRT near its cusp and where D is wide
+//!
+//! Near TRT's cusp, where its two caustics merge (`2 k` within 0.05 of 1, `k = 1 / eta'`), `g`
+//! goes from a -1/2 to a -2/3 power singularity in c, and where D is wide (s above 0.125,
+//! beta_n above about 0.31) TRT's two half-branches would each need the lobe's nodes. There the
+//! abscissa is gamma itself, over which `cos(gamma) A_p / 2` is smooth, one rule for all of [0,
+//! pi/2]: the measure `D(+-phi - Phi(gamma)) dgamma` from the panels' nodes, each with its root
+//! of the exit angle (`dgamma = dv / |Phi'|`; near the cusp with narrow D), or from
+//! Gauss-Legendre over gamma cut at D's kinks (wide D: no roots needed).
+//!
+//! The residual lobe's `N_3 = 1/(2 pi) int A_3 / 2 dh` does not depend on phi (one integral
+//! per inclination); its integrand varies fast near grazing (the Fresnel factors) and it takes
+//! TRT's 2n Gauss-Legendre nodes on each half of [0, pi/2] (with n on each it was 1.1e-5 from
+//! the reference, against 1e-9).
 //!
 //! # Cost and accuracy
 //!
-//! Each node costs typically two or three evaluations of the exit angle (the Halley iterations)
-//! and one of the attenuations, which take the cosines of the last. R and TT have one branch;
-//! TRT two or three. Against the reference integrator ([`ALIGNED_FAR_FIELD_ERROR_BOUNDS`] and
-//! the tests of this module), with 16 nodes per branch the error is at most 6.3e-5 of the value
-//! (plus 1e-6 of the lobe's peak) on the documented grid for beta_n from 0.05 to 1 (at 0.4;
-//! 3.8e-5 outside 0.35 to 0.45), and 1.1e-4 over 300 random configurations (roughness, index
-//! 1.3 to 2, tilt, absorption, inclination, azimuth). Near TRT's cusp, where its two caustics
-//! merge (`2 k` within 0.05 of 1, `k = 1 / eta'`), the integrand in the mass coordinate goes
-//! from a -1/2 to a -2/3 power singularity, which no fixed power map fits: there a caustic's
-//! panel takes a map from the exit angle's Taylor cubic at the caustic ([`cusp_map`]), 3.1e-5
-//! at most for beta_n up to 0.3, and wider D (s > 0.125) the integral over gamma itself, where
-//! the exit angle is nearly flat, cut at D's kinks: 7.3e-5 at most (test `near_the_cusp`, 14
-//! offsets of `2 k` from 1 down to 3e-5). The README's far-field section tabulates it beside
-//! the fixed rule, with the time per evaluation.
+//! Against the reference integrator ([`ALIGNED_FAR_FIELD_ERROR_BOUNDS`] and the tests of this
+//! module), with 8 nodes per half-branch (8 for R and TT, 16 for TRT) the error is at most
+//! 2.3e-6 of the value (plus 1e-6 of the lobe's peak) on the documented grid for beta_n from
+//! 0.05 to 1 (TT at 0.8), 9.0e-6 over 300 random configurations (roughness, index 1.3 to 2,
+//! tilt, absorption, inclination, azimuth) and 6.4e-6 near TRT's cusp (14 offsets of `2 k`
+//! from 1 down to 3e-5); with 6 per half-branch 2.9e-4 and with 4 1.6e-2 (TRT at 0.3). Each
+//! query costs the fine rules (48 evaluations of D and the mass coordinate per half-branch),
+//! the Gauss rules' recurrences and eigenvalues (O(n M) and O(n^2)), and per lobe the roots of
+//! the exit angle and the attenuations at its nodes; the README's far-field section tabulates
+//! the time beside the fixed rule's.
 //!
 //! It is an `f64`, CPU-only integrator: the node placement depends on the query (branches,
-//! panels, Halley iterations), which shader code and the batch kernels do not do.
+//! panels, Halley iterations, the Gauss rules), which shader code and the batch kernels do not
+//! do.
 
 use super::chiang::{ChiangHair, LobeTerms, PairAngles, CHIANG_LOBES};
 use super::far_field::add_weighted;
@@ -63,7 +87,7 @@ use crate::absorption::{segment_length, PathLength};
 use crate::azimuthal::{exit_angle, logistic, FibrePath, Refraction, LOBES_WITH_RESIDUAL};
 use crate::error::ParamError;
 use crate::params::HairParams;
-use crate::quadrature::gauss_legendre;
+use crate::quadrature::{gauss_legendre, gauss_rule_of_measure};
 use crate::real::wrap_angle;
 use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
 
@@ -79,8 +103,20 @@ const CUSP_SCALE: f64 = 0.125;
 /// With 1e-14 the errors of the tests were the same to the digits they print.
 const ROOT_TOLERANCE: f64 = 1e-12;
 
-/// Largest node count per branch of an [`AlignedFarField`].
-pub const MAX_NODES_PER_BRANCH: usize = 64;
+/// Nodes of the fine rule that discretises a folded measure, for each of phi and -phi, at
+/// least. With 8 Gauss nodes per half-branch, 16 gave up to 5.0e-6 on the documented grid and
+/// 24 up to 2.3e-6 (TRT at beta_n 0.3 and TT at 0.8 the worst), with R's and TT's errors
+/// levelling off at 1e-7 and 9e-7 (1e-8 and 8e-7 with 32 and more).
+const MEASURE_NODES: usize = 24;
+
+/// Nodes of the fine rule of a folded measure ([`MEASURE_NODES`]) for `nodes` Gauss nodes:
+/// at least twice as many, so that the measure holds the Gauss rule's polynomials.
+fn measure_nodes(nodes: usize) -> usize {
+    MEASURE_NODES.max(2 * nodes)
+}
+
+/// Largest node count per half-branch of an [`AlignedFarField`] (TRT takes twice as many).
+pub const MAX_NODES_PER_HALF_BRANCH: usize = 32;
 
 /// Scale of the mass coordinate on a panel that holds the peak of D (v = 0 mod 2 pi), in
 /// units of D's scale s.
@@ -89,34 +125,36 @@ const PEAK_PANEL_SCALE: f64 = 2.5;
 /// Scale of the mass coordinate on a panel in D's tails, in units of s.
 const TAIL_PANEL_SCALE: f64 = 4.0;
 
-/// Measured accuracy of [`AlignedFarField`]: `(beta_n, nodes per branch, bound)`, the bound on
-/// the error of each `N_p A_p` (p = 0, 1, 2, every channel) relative to the reference's value
-/// there plus 1e-6 of the lobe's peak over phi, over inclinations 0, 0.7, 1.3 and grazing, phi
-/// on a grid with 0 and +-pi, sigma_a = 0, 0.5 and 10 (the test
+/// Measured accuracy of [`AlignedFarField`]: `(beta_n, nodes per half-branch, bound)`, the
+/// bound on the error of each `N_p A_p` (p = 0, 1, 2, every channel) relative to the
+/// reference's value there plus 1e-6 of the lobe's peak over phi, over inclinations 0, 0.7,
+/// 1.3 and grazing, phi on a grid with 0 and +-pi, sigma_a = 0, 0.5 and 10 (the test
 /// `aligned_far_field::tests::meets_its_documented_bound_and_compares_with_the_fixed_rule`).
-/// Each bound is about twice the worst error measured there, in the order of the table (16
-/// nodes: 3.8e-5, 3.4e-5, 1.4e-5, 2.8e-5, 5.1e-5, 6.3e-5, 4.7e-5, 2.1e-5, 1.9e-5 and 3.2e-5; 8
-/// nodes: 1.7e-2 and 1.7e-2; 24 nodes: 8.4e-6, 1.1e-5, 4.3e-7 and 7.3e-8; 28 nodes: 5.9e-6).
-/// The worst cases are where a peak of D meets an end of a branch (`cos gamma = 0`). Near
-/// TRT's cusp it is up to 7.3e-5 (module documentation).
+/// Each bound is about twice the worst error measured there, in the order of the table (8
+/// nodes, at most 16 per lobe: 1.5e-7, 8.2e-7, 8.7e-7, 2.0e-6, 7.5e-7, 9.6e-7, 1.2e-6, 1.5e-6,
+/// 2.3e-6 and 2.1e-6; 4 nodes: 4.1e-5, 1.6e-2 and 7.2e-3; 6 nodes: 2.7e-7, 2.9e-4 and
+/// 1.3e-4; 12 nodes: 7.5e-7 and 3.0e-8). R's and TT's errors level off at 1e-7 and 9e-7 (TT
+/// at beta_n 0.1 to 0.3), those of the fine rule of the measure (24 nodes). Near
+/// TRT's cusp it is up to 6.4e-6 (test `near_the_cusp`).
 pub const ALIGNED_FAR_FIELD_ERROR_BOUNDS: &[(f64, usize, f64)] = &[
-    (0.05, 16, 8e-5),
-    (0.1, 16, 7e-5),
-    (0.2, 16, 3e-5),
-    (0.3, 16, 6e-5),
-    (0.35, 16, 1e-4),
-    (0.4, 16, 1.3e-4),
-    (0.45, 16, 1e-4),
-    (0.5, 16, 5e-5),
-    (0.8, 16, 4e-5),
-    (1.0, 16, 7e-5),
-    (0.05, 8, 4e-2),
-    (0.3, 8, 4e-2),
-    (0.3, 24, 2e-5),
-    (0.35, 24, 2.5e-5),
-    (0.5, 24, 1e-6),
-    (1.0, 24, 2e-7),
-    (0.35, 28, 1.2e-5),
+    (0.05, 8, 3e-7),
+    (0.1, 8, 2e-6),
+    (0.2, 8, 2e-6),
+    (0.3, 8, 4e-6),
+    (0.35, 8, 2e-6),
+    (0.4, 8, 2e-6),
+    (0.45, 8, 2.5e-6),
+    (0.5, 8, 3e-6),
+    (0.8, 8, 5e-6),
+    (1.0, 8, 5e-6),
+    (0.05, 4, 1e-4),
+    (0.3, 4, 3e-2),
+    (1.0, 4, 1.5e-2),
+    (0.05, 6, 6e-7),
+    (0.3, 6, 6e-4),
+    (1.0, 6, 3e-4),
+    (0.3, 12, 1.5e-6),
+    (1.0, 12, 6e-8),
 ];
 
 /// The far field of the Chiang model integrated over h with nodes placed per lobe and branch
@@ -124,8 +162,11 @@ pub const ALIGNED_FAR_FIELD_ERROR_BOUNDS: &[(f64, usize, f64)] = &[
 #[derive(Clone, Debug, PartialEq)]
 pub struct AlignedFarField {
     hair: ChiangHair<f64>,
-    /// Gauss-Legendre rules on [0, 1], `rules[n - 1]` with n nodes, n = 1..=nodes per branch.
+    /// Gauss-Legendre rules on [0, 1], `rules[n - 1]` with n nodes, n = 1 up to the nodes of
+    /// the measures' fine rule ([`measure_nodes`]).
     rules: Vec<Vec<(f64, f64)>>,
+    /// Nodes of each half-branch's Gauss rule.
+    nodes: usize,
 }
 
 /// A stretch of gamma on which the exit angle of one lobe is monotone, with which of its ends
@@ -157,6 +198,35 @@ enum PanelMap {
 }
 
 impl PanelMap {
+    /// The y at which the map reaches `value` of [a, b] (clamped): the inverse of
+    /// [`PanelMap::at`], by Newton's method from y = 1 for the cubic (increasing and convex
+    /// on [0, 1], so the steps descend monotonically onto the root).
+    fn inverse(self, [a, b]: [f64; 2], value: f64) -> f64 {
+        let r = ((value - a) / (b - a)).clamp(0.0, 1.0);
+        match self {
+            PanelMap::Linear => r,
+            PanelMap::SingularLow => r.sqrt(),
+            PanelMap::SingularHigh => (1.0 - r).sqrt(),
+            PanelMap::SingularBoth => (1.0 - 2.0 * r).acos() / PI,
+            PanelMap::Cusp {
+                from_low,
+                terms: [t1, t2, t3],
+            } => {
+                let target = if from_low { r } else { 1.0 - r };
+                let mut y = 1.0_f64;
+                for _ in 0..100 {
+                    let f = y * (t1 + y * (t2 + y * t3)) - target;
+                    let slope = t1 + y * (2.0 * t2 + 3.0 * y * t3);
+                    if !(f > 0.0 && slope > 0.0) {
+                        break;
+                    }
+                    y -= f / slope;
+                }
+                y.max(0.0)
+            }
+        }
+    }
+
     /// The map of a panel with a caustic at its low end, its high end, both or neither.
     fn of(low: bool, high: bool) -> Self {
         match (low, high) {
@@ -295,6 +365,26 @@ impl Geometry {
         ]
     }
 
+    /// The halves of lobe p's branches: each branch clipped to gamma >= 0 (those wholly below
+    /// dropped), which with their mirror images cover [-pi/2, pi/2]: the exit angle is odd
+    /// about `p pi` (`Phi(p, -gamma) = 2 p pi - Phi(p, gamma)`, from gamma_t odd in gamma) and
+    /// A_p even, so the image at azimuth phi is the half at -phi. The end at gamma = 0 of a
+    /// clipped branch is no caustic.
+    fn halves(&self, p: usize) -> Vec<Branch> {
+        self.branches(p)
+            .into_iter()
+            .filter(|branch| branch.gamma[1] > 0.0)
+            .map(|branch| Branch {
+                gamma: [branch.gamma[0].max(0.0), branch.gamma[1]],
+                caustic: [
+                    branch.caustic[0] && branch.gamma[0] >= 0.0,
+                    branch.caustic[1],
+                ],
+                increasing: branch.increasing,
+            })
+            .collect()
+    }
+
     /// The point on `branch` where `Phi(p, gamma) = target` (to `ROOT_TOLERANCE`), by Halley
     /// iteration ([`ExitPoint::halley_step`]) that starts with a step from `start` (the
     /// previous node's point: nodes come in order along the branch, so the first step is an
@@ -350,19 +440,22 @@ struct Panel {
 }
 
 impl AlignedFarField {
-    /// The far field of `params` with `nodes_per_branch` nodes on each branch of each lobe's
-    /// exit angle (and on the residual lobe).
+    /// The far field of `params` with `nodes_per_half_branch` Gauss nodes for each half-branch
+    /// of a lobe's exit angle (module documentation): that many for R and for TT, twice as many
+    /// for TRT (shared equally by its two half-branches, or all on its one), and twice as many
+    /// on each half of [0, pi/2] for the residual lobe. 8 give at most 16 per lobe for R, TT
+    /// and TRT.
     ///
     /// # Errors
-    /// `nodes_per_branch` outside 1..=64.
-    pub fn new(params: &HairParams, nodes_per_branch: usize) -> Result<Self, ParamError> {
+    /// `nodes_per_half_branch` outside 1..=32.
+    pub fn new(params: &HairParams, nodes_per_half_branch: usize) -> Result<Self, ParamError> {
         ParamError::check(
-            "nodes_per_branch",
-            nodes_per_branch as f64,
-            "the node count per branch must be in 1..=64",
-            |v| (1.0..=MAX_NODES_PER_BRANCH as f64).contains(&v),
+            "nodes_per_half_branch",
+            nodes_per_half_branch as f64,
+            "the node count per half-branch must be in 1..=32",
+            |v| (1.0..=MAX_NODES_PER_HALF_BRANCH as f64).contains(&v),
         )?;
-        let rules = (1..=nodes_per_branch)
+        let rules = (1..=measure_nodes(2 * nodes_per_half_branch))
             .map(|n| {
                 gauss_legendre(n)
                     .into_iter()
@@ -373,12 +466,13 @@ impl AlignedFarField {
         Ok(AlignedFarField {
             hair: ChiangHair::new(params),
             rules,
+            nodes: nodes_per_half_branch,
         })
     }
 
-    /// Nodes per branch.
-    pub fn nodes_per_branch(&self) -> usize {
-        self.rules.len()
+    /// Nodes per half-branch.
+    pub fn nodes_per_half_branch(&self) -> usize {
+        self.nodes
     }
 
     /// The near-field model it averages.
@@ -429,32 +523,186 @@ impl AlignedFarField {
     }
 
     /// `N_3 A_3 = 1/(2 pi) int cos(gamma) A_3(sin gamma) / 2 dgamma` by Gauss-Legendre over
-    /// gamma on [0, pi/4] and [pi/4, pi/2], the integrand being even. The Fresnel factors vary
-    /// fast near grazing: with 16 nodes over [-pi/2, pi/2] it was 1e-5 from the reference at
-    /// normal incidence, over [0, pi/2] 1.4e-6, on the two halves 1e-9.
+    /// gamma on [0, pi/4] and [pi/4, pi/2], the integrand being even, with TRT's node count on
+    /// each. The Fresnel factors vary fast near grazing: with 16 nodes over [-pi/2, pi/2] it was
+    /// 1e-5 from the reference at normal incidence, over [0, pi/2] 1.4e-6, on the two halves
+    /// 1e-9; with 8 on each half 1.1e-5.
     fn residual(&self, geometry: &Geometry) -> [f64; 3] {
-        let rule = &self.rules[self.rules.len() - 1];
         let mut sum = [0.0; 3];
-        for (half, &(y, w)) in [0.0, 1.0]
-            .iter()
-            .flat_map(|half| rule.iter().map(move |node| (half, node)))
-        {
-            let point = geometry.point(3, FRAC_PI_4 * (half + y));
-            let a = self.attenuation(geometry, 3, &point);
-            let weight = w * FRAC_PI_4 * point.cos / TAU;
-            add_weighted(&mut sum, weight, &a);
+        for half in [0.0, 1.0] {
+            for &(y, w) in &self.rules[2 * self.nodes - 1] {
+                let point = geometry.point(3, FRAC_PI_4 * (half + y));
+                let a = self.attenuation(geometry, 3, &point);
+                add_weighted(&mut sum, w * FRAC_PI_4 * point.cos / TAU, &a);
+            }
         }
         sum
     }
 
-    /// `N_p A_p` of lobe p < 3: the sum over its branches.
+    /// `N_p A_p` of lobe p < 3, from the Gauss rules of its folded measures (module
+    /// documentation): R and TT over their exit angle, one half-branch each; TRT over its
+    /// half-branches' exit angles, the nodes shared equally, except near its cusp and where D
+    /// is wide (s above [`CUSP_SCALE`]), where over gamma, one rule for all of [0, pi/2].
     fn lobe(&self, geometry: &Geometry, p: usize, phi: f64) -> [f64; 3] {
+        let halves = geometry.halves(p);
+        let near_cusp = p >= 2 && (p as f64 * geometry.k - 1.0).abs() < CUSP_ZONE;
+        let wide = self.hair.uniforms().logistic_scale > CUSP_SCALE;
+        if p >= 2 && (near_cusp || wide) {
+            let fine = measure_nodes(2 * self.nodes);
+            let mut measure = Vec::with_capacity(2 * halves.len() * fine);
+            for half in &halves {
+                for side in [phi, -phi] {
+                    measure.extend(match wide {
+                        true => self.offset_measure_in_gamma(geometry, p, side, half, fine),
+                        false => self.offset_measure_by_panels(geometry, p, side, half, fine),
+                    });
+                }
+            }
+            return self.sum_over_offsets(geometry, p, &measure);
+        }
+        let lobe_nodes = match p {
+            0 | 1 => self.nodes,
+            _ => 2 * self.nodes,
+        };
+        let shares = share_nodes(&vec![1.0; halves.len()], lobe_nodes);
         let mut sum = [0.0; 3];
-        for branch in geometry.branches(p) {
-            let part = self.branch(geometry, p, phi, &branch);
+        for (half, nodes) in halves.iter().zip(shares) {
+            let part = self.sum_over_exit_angles(geometry, p, phi, half, nodes);
             add_weighted(&mut sum, 1.0, &part);
         }
         sum
+    }
+
+    /// The share of `N_p A_p` of a half-branch and its mirror image by the `nodes`-point Gauss
+    /// rule of the folded measure `(D(phi - c) + D(-phi - c)) dc` in the half's
+    /// [`ExitAngleCoordinate`]: at each node the exit angle's root and the attenuation there.
+    fn sum_over_exit_angles(
+        &self,
+        geometry: &Geometry,
+        p: usize,
+        phi: f64,
+        half: &Branch,
+        nodes: usize,
+    ) -> [f64; 3] {
+        let Some(coordinate) = ExitAngleCoordinate::of(geometry, p, half) else {
+            return [0.0; 3];
+        };
+        let fine = measure_nodes(nodes);
+        let mut measure = Vec::with_capacity(2 * fine);
+        for side in [phi, -phi] {
+            measure.extend(self.exit_angle_measure(geometry, p, side, half, &coordinate, fine));
+        }
+        let mut point = geometry.point(p, half.gamma[0]);
+        let mut sum = [0.0; 3];
+        for (x, weight) in gauss_rule_of_measure(&measure, nodes) {
+            let (c, dc_dx) = coordinate.at(x);
+            point = geometry.solve(p, half, c, point);
+            let jacobian = dc_dx / point.slope.abs();
+            if jacobian.is_finite() {
+                let a = self.attenuation(geometry, p, &point);
+                add_weighted(&mut sum, weight * 0.5 * point.cos * jacobian, &a);
+            }
+        }
+        sum
+    }
+
+    /// `N_p A_p` of TRT by the Gauss rule of a folded measure over gamma, with TRT's
+    /// `2 self.nodes` nodes.
+    fn sum_over_offsets(&self, geometry: &Geometry, p: usize, measure: &[(f64, f64)]) -> [f64; 3] {
+        let mut sum = [0.0; 3];
+        for (gamma, weight) in gauss_rule_of_measure(measure, 2 * self.nodes) {
+            let point = geometry.point(p, gamma);
+            let a = self.attenuation(geometry, p, &point);
+            add_weighted(&mut sum, weight * 0.5 * point.cos, &a);
+        }
+        sum
+    }
+
+    /// The nodes of the half's panels for azimuth `side` ([`AlignedFarField::panels`]), each
+    /// with its v, the wrapped w of v and the weight `d tau` of the mass coordinate there
+    /// divided by its density (`dv`): `fine` nodes shared among the panels (near TRT's cusp
+    /// with [`cusp_map`] at caustics); and the point at the end of the half where v is least.
+    fn panel_nodes(
+        &self,
+        geometry: &Geometry,
+        p: usize,
+        side: f64,
+        half: &Branch,
+        (fine, near_cusp): (usize, bool),
+    ) -> (Vec<PanelNode>, ExitPoint) {
+        let (panels, start) = self.panels(geometry, p, side, half, near_cusp);
+        let masses: Vec<f64> = panels
+            .iter()
+            .map(|panel| (panel.tau[1] - panel.tau[0]).max(0.0).sqrt())
+            .collect();
+        let counts = share_nodes(&masses, fine);
+        let mut nodes = Vec::with_capacity(fine);
+        for (panel, n) in panels.iter().zip(counts) {
+            if panel.tau[1] <= panel.tau[0] || n == 0 {
+                continue;
+            }
+            for &(y, w) in &self.rules[n - 1] {
+                let (tau, dtau) = panel.map.at(panel.tau, y);
+                let (v, wrapped) = panel.coordinate.v(tau);
+                let density = logistic(wrapped, panel.coordinate.sigma);
+                if density > 0.0 {
+                    nodes.push(PanelNode {
+                        v,
+                        wrapped,
+                        dv: w * dtau / density,
+                    });
+                }
+            }
+        }
+        (nodes, start)
+    }
+
+    /// The measure `D(side - c) dc` over the half's exit angle c, in the coordinate x of
+    /// `coordinate` (`dc = (dc/dx) dx`), from the panels' nodes: no root of the exit angle is
+    /// needed, only D.
+    fn exit_angle_measure(
+        &self,
+        geometry: &Geometry,
+        p: usize,
+        side: f64,
+        half: &Branch,
+        coordinate: &ExitAngleCoordinate,
+        fine: usize,
+    ) -> Vec<(f64, f64)> {
+        let (nodes, _) = self.panel_nodes(geometry, p, side, half, (fine, false));
+        let mut measure = Vec::with_capacity(nodes.len());
+        for node in nodes {
+            let x = coordinate.x(side - node.v);
+            let (_, dc_dx) = coordinate.at(x);
+            if dc_dx > 0.0 {
+                let d = self.hair.logistic().density(node.wrapped);
+                measure.push((x, node.dv * d / dc_dx));
+            }
+        }
+        measure
+    }
+
+    /// The measure `D(side - Phi(gamma)) dgamma` over gamma from the panels' nodes, each
+    /// node's gamma the root of the exit angle there (`dgamma = dv / |Phi'|`).
+    fn offset_measure_by_panels(
+        &self,
+        geometry: &Geometry,
+        p: usize,
+        side: f64,
+        half: &Branch,
+        fine: usize,
+    ) -> Vec<(f64, f64)> {
+        let (nodes, mut point) = self.panel_nodes(geometry, p, side, half, (fine, true));
+        let mut measure = Vec::with_capacity(nodes.len());
+        for node in nodes {
+            point = geometry.solve(p, half, side - node.v, point);
+            let slope = point.slope.abs();
+            if slope > 0.0 {
+                let d = self.hair.logistic().density(node.wrapped);
+                measure.push((point.gamma, node.dv * d / slope));
+            }
+        }
+        measure
     }
 
     /// The panels of `branch` for lobe p at azimuth phi, in increasing v, and the point at the
@@ -516,88 +764,100 @@ impl AlignedFarField {
         (panels, start)
     }
 
-    /// The branch's share of `N_p A_p` by Gauss-Legendre in gamma, without the change of
-    /// variables: smooth where the exit angle is nearly flat ([`AlignedFarField::branch`]),
-    /// except at D's kinks (v through pi), where the branch is cut, its nodes shared among the
-    /// pieces in proportion to their length. Near TRT's cusp the uncut branch was up to 8.7e-4
-    /// from the reference at beta_n 0.4 to 0.7, where D at its kink is 2e-7 to 6e-3 of its
-    /// peak; cut, 3.1e-5 to 7.3e-5 (test `near_the_cusp`).
-    fn branch_in_gamma(
+    /// The measure `D(side - Phi(gamma)) dgamma` by Gauss-Legendre over gamma on the half, cut
+    /// at D's kinks (v through pi), the nodes shared among the pieces in proportion to their
+    /// length: for TRT where D is wide, whose Gauss rule is then over gamma (module
+    /// documentation); no root of the exit angle is needed but at the cuts. Near the cusp the
+    /// uncut branch was up to 8.7e-4 from the reference at beta_n 0.4 to 0.7, where D at its
+    /// kink is 2e-7 to 6e-3 of its peak; cut, 3.1e-5 to 7.3e-5 (16 nodes per branch, before
+    /// the Gauss rule of the measure).
+    fn offset_measure_in_gamma(
         &self,
         geometry: &Geometry,
         p: usize,
-        phi: f64,
-        branch: &Branch,
-    ) -> [f64; 3] {
-        let ends = branch.gamma.map(|gamma| geometry.point(p, gamma));
-        let [va, vb] = ends.map(|end| phi - end.value);
-        let mut cuts = vec![branch.gamma[0], branch.gamma[1]];
+        side: f64,
+        half: &Branch,
+        fine: usize,
+    ) -> Vec<(f64, f64)> {
+        let ends = half.gamma.map(|gamma| geometry.point(p, gamma));
+        let [va, vb] = ends.map(|end| side - end.value);
+        let mut cuts = vec![half.gamma[0], half.gamma[1]];
         cuts.extend(
             kinks_between(va.min(vb), va.max(vb))
-                .map(|v| geometry.solve(p, branch, phi - v, ends[0]).gamma),
+                .map(|v| geometry.solve(p, half, side - v, ends[0]).gamma),
         );
         cuts.sort_by(f64::total_cmp);
         let lengths: Vec<f64> = cuts.windows(2).map(|ends| ends[1] - ends[0]).collect();
-        let counts = share_nodes(&lengths, self.rules.len());
-        let mut sum = [0.0; 3];
+        let counts = share_nodes(&lengths, fine);
+        let mut measure = Vec::with_capacity(fine);
         for (piece, n) in cuts.windows(2).zip(counts) {
             if n == 0 {
                 continue;
             }
             let (g0, g1) = (piece[0], piece[1]);
             for &(y, w) in &self.rules[n - 1] {
-                let point = geometry.point(p, g0 + (g1 - g0) * y);
-                let d = self.hair.logistic().density(wrap_angle(phi - point.value));
-                let weight = w * (g1 - g0) * 0.5 * point.cos * d;
-                let a = self.attenuation(geometry, p, &point);
-                add_weighted(&mut sum, weight, &a);
+                let gamma = g0 + (g1 - g0) * y;
+                let value = geometry.point(p, gamma).value;
+                let d = self.hair.logistic().density(wrap_angle(side - value));
+                measure.push((gamma, w * (g1 - g0) * d));
             }
         }
-        sum
+        measure
+    }
+}
+
+/// A node of a half's panels ([`AlignedFarField::panel_nodes`]).
+#[derive(Clone, Copy, Debug)]
+struct PanelNode {
+    v: f64,
+    wrapped: f64,
+    /// The node's weight in v.
+    dv: f64,
+}
+
+/// A coordinate x in [0, 1] over a half-branch's range of exit angles `[lo, hi]` in which the
+/// integrand without D, `cos(gamma) A_p / (2 |Phi'|) dc/dx`, is smooth: c linear in x, except
+/// at a caustic end (or TRT's gamma = 0 without caustics, [`Geometry::branches`]), where
+/// `|Phi'|` vanishes (or nearly) and the map is [`cusp_map`]'s cubic, which makes x nearly
+/// linear in gamma there: the square at an isolated caustic, the cube at TRT's cusp.
+#[derive(Clone, Copy, Debug)]
+struct ExitAngleCoordinate {
+    ends: [f64; 2],
+    map: PanelMap,
+}
+
+impl ExitAngleCoordinate {
+    /// The coordinate of `half`'s exit angles; `None` where they span nothing.
+    fn of(geometry: &Geometry, p: usize, half: &Branch) -> Option<Self> {
+        let points = half.gamma.map(|gamma| geometry.point(p, gamma));
+        let (low, high) = match points[0].value <= points[1].value {
+            true => (0, 1),
+            false => (1, 0),
+        };
+        let ends = [points[low].value, points[high].value];
+        let length = ends[1] - ends[0];
+        if length.is_nan() || length <= 0.0 {
+            return None;
+        }
+        let third = geometry.third_derivative_at_0(p);
+        let map = match (half.caustic[low], half.caustic[high]) {
+            (true, false) if half.gamma[low] == 0.0 => cusp_map(true, &points[low], third, length),
+            (false, true) if half.gamma[high] == 0.0 => {
+                cusp_map(false, &points[high], third, length)
+            }
+            (low, high) => PanelMap::of(low, high),
+        };
+        Some(ExitAngleCoordinate { ends, map })
     }
 
-    /// The branch's share of `N_p A_p`: its nodes shared among its panels. Near TRT's cusp
-    /// (`|p k - 1| < 0.05`), where its two caustics merge, the integrand in the mass
-    /// coordinate goes from a -1/2 to a -2/3 power singularity. There a panel that ends at one
-    /// caustic takes [`cusp_map`] (test `near_the_cusp`, 16 nodes: 1.7e-5 to 3.1e-5 for beta_n
-    /// 0.05 to 0.2, 2.2e-6 at 0.3; the square map gave 1.2e-2 to 1.9e-2, the cube 1.1e-3 to
-    /// 5.4e-3, powers 4 to 6 below the cusp 1e-3 to 2e-3 on a similar scan), except where D is
-    /// wide (s > 0.125, beta_n above about 0.31): the exit angle being nearly flat over the
-    /// branch, it is integrated over gamma itself ([`AlignedFarField::branch_in_gamma`]),
-    /// 1.8e-5 at beta_n 0.33 and 3.1e-5 to 7.3e-5 from 0.4 to 1 (the Taylor map there: 8.2e-5
-    /// at 0.33, 1.3e-2 at 0.4).
-    fn branch(&self, geometry: &Geometry, p: usize, phi: f64, branch: &Branch) -> [f64; 3] {
-        let near_cusp = p >= 2 && (p as f64 * geometry.k - 1.0).abs() < CUSP_ZONE;
-        if near_cusp && self.hair.uniforms().logistic_scale > CUSP_SCALE {
-            return self.branch_in_gamma(geometry, p, phi, branch);
-        }
-        let (panels, mut point) = self.panels(geometry, p, phi, branch, near_cusp);
-        let masses: Vec<f64> = panels
-            .iter()
-            .map(|panel| (panel.tau[1] - panel.tau[0]).max(0.0).sqrt())
-            .collect();
-        let counts = share_nodes(&masses, self.rules.len());
-        let mut sum = [0.0; 3];
-        for (panel, n) in panels.iter().zip(counts) {
-            if panel.tau[1] <= panel.tau[0] || n == 0 {
-                continue;
-            }
-            for &(y, w) in &self.rules[n - 1] {
-                let (tau, dtau) = panel.map.at(panel.tau, y);
-                let (v, wrapped) = panel.coordinate.v(tau);
-                point = geometry.solve(p, branch, phi - v, point);
-                let slope = point.slope.abs();
-                let density = logistic(wrapped, panel.coordinate.sigma);
-                if slope == 0.0 || density == 0.0 {
-                    continue;
-                }
-                let d = self.hair.logistic().density(wrapped);
-                let weight = w * dtau * 0.5 * point.cos * d / (slope * density);
-                let a = self.attenuation(geometry, p, &point);
-                add_weighted(&mut sum, weight, &a);
-            }
-        }
-        sum
+    /// `(c, dc/dx)` at x.
+    fn at(&self, x: f64) -> (f64, f64) {
+        self.map.at(self.ends, x)
+    }
+
+    /// x at c (clamped to the range).
+    fn x(&self, c: f64) -> f64 {
+        self.map.inverse(self.ends, c)
     }
 }
 
@@ -810,7 +1070,7 @@ mod tests {
             let references = references(aligned.near_field());
             let errors = worst_errors(&references, |s, c, phi| aligned.azimuthal(s, c, phi));
             println!(
-                "beta_n {beta_n}: aligned {nodes} per branch: R {:.1e} TT {:.1e} TRT {:.1e}",
+                "beta_n {beta_n}: aligned {nodes} per half-branch: R {:.1e} TT {:.1e} TRT {:.1e}",
                 errors[0], errors[1], errors[2]
             );
             for fixed in [16, 32, 64, 128, 512] {
@@ -831,15 +1091,15 @@ mod tests {
         }
     }
 
-    /// At random roughness, absorption, index, tilt, inclination and azimuth, 16 nodes per
-    /// branch are within 1e-3 of the reference (relative to its value plus 1e-6 of the lobe's
-    /// peak over a grid of azimuths at that inclination), the goal; the worst is printed
-    /// apart for TRT near the cusp where its two caustics merge (`2 k` within 0.05 of 1,
-    /// `near_the_cusp`).
+    /// At random roughness, absorption, index, tilt, inclination and azimuth, 8 nodes per
+    /// half-branch (at most 16 per lobe) are within the goal of the reference, 1e-3
+    /// below beta_n = 0.3 and 1e-5 from there (relative to its value plus 1e-6 of the lobe's
+    /// peak over a grid of azimuths at that inclination); measured 9.0e-6 at most.
     #[test]
-    fn random_configurations_are_within_1e_3() {
+    fn random_configurations_meet_the_goal() {
         let mut rng = Pcg64Mcg::seed_from_u64(15);
         let mut random = || rng.random::<f64>();
+        // Below beta_n = 0.3 and from there.
         let mut worst = [0.0_f64; 2];
         for _ in 0..300 {
             let beta_n = 0.05 + 0.95 * random();
@@ -851,7 +1111,7 @@ mod tests {
                 sigma_a: [0.0, 2.0 * random(), 10.0 * random()],
             })
             .unwrap();
-            let aligned = AlignedFarField::new(&p, 16).unwrap();
+            let aligned = AlignedFarField::new(&p, 8).unwrap();
             let theta = FRAC_PI_2 * (2.0 * random() - 1.0);
             let (s, c) = theta.sin_cos();
             let reference = |phi| {
@@ -863,8 +1123,8 @@ mod tests {
             let grid: Vec<Azimuthal> = azimuths().into_iter().map(reference).collect();
             let phi = PI * (2.0 * random() - 1.0);
             let (exact, ours) = (reference(phi), aligned.azimuthal(s, c, phi));
-            let near_cusp =
-                (2.0 * aligned.hair.refraction(s, c).sin_gamma_t(1.0) - 1.0).abs() < 5e-2;
+            let rough = usize::from(beta_n >= 0.3);
+            let bound = [1e-3, 1e-5][rough];
             for ch in 0..3 {
                 let largest = grid
                     .iter()
@@ -880,9 +1140,7 @@ mod tests {
                         continue;
                     }
                     let error = (ours[p][ch] - exact[p][ch]).abs() / (exact[p][ch] + 1e-6 * peak);
-                    let cusp = near_cusp && p == 2;
-                    let bound = 1e-3;
-                    worst[usize::from(cusp)] = worst[usize::from(cusp)].max(error);
+                    worst[rough] = worst[rough].max(error);
                     assert!(
                         error <= bound,
                         "beta_n {beta_n}, theta {theta}, phi {phi}, lobe {p}, k {}: {error:.2e}",
@@ -891,15 +1149,18 @@ mod tests {
                 }
             }
         }
-        println!("300 random configurations, 16 nodes per branch: worst {:.1e}, TRT near the cusp {:.1e}", worst[0], worst[1]);
+        println!(
+            "300 random configurations, 8 nodes per half-branch: worst {:.1e} below beta_n 0.3, {:.1e} from there",
+            worst[0], worst[1]
+        );
     }
 
     /// TRT at and near its cusp, `2 k = 1 + offset` for offsets up to 0.05, at roughnesses
-    /// from 0.05 to 1, every azimuth of the grid: within 1e-4 up to beta_n = 0.3, where the
-    /// mass coordinate takes [`cusp_map`] (measured 3.1e-5, 2.9e-5, 1.7e-5, 2.2e-6 at 0.05,
-    /// 0.1, 0.2, 0.3; 1.2e-2, 1.9e-2, 1.5e-2 below 0.3 with the square map), and within
-    /// 1.5e-4 above, integrated over gamma and cut at D's kinks (measured 3.1e-5 to 7.3e-5;
-    /// 6.7e-5 to 8.7e-4 uncut), relative to the value plus 1e-6 of the peak.
+    /// from 0.05 to 1, every azimuth of the grid, 8 nodes per half-branch: within 1.5e-5 of the
+    /// reference, relative to the value plus 1e-6 of the peak (measured 6.4e-6, 4.8e-6, 3.4e-6
+    /// and 2.7e-6 at beta_n 0.05, 0.1, 0.2 and 0.3 over gamma through the panels' roots, 6e-9
+    /// to 3.1e-7 from 0.4 to 0.7 and 2.5e-6 at 1 over gamma by Gauss-Legendre; 16 nodes per
+    /// branch of the rule without the Gauss rule of the measure gave 3.1e-5 to 7.3e-5).
     #[test]
     fn near_the_cusp() {
         let eta: f64 = 1.55;
@@ -912,7 +1173,7 @@ mod tests {
                 sigma_a: [0.0, 0.5, 10.0],
             })
             .unwrap();
-            let aligned = AlignedFarField::new(&p, 16).unwrap();
+            let aligned = AlignedFarField::new(&p, 8).unwrap();
             let mut worst = 0.0_f64;
             for offset in [
                 -0.05, -0.02, -1e-2, -1e-3, -3e-4, -1e-4, -3e-5, 0.0, 3e-5, 1e-4, 1e-3, 1e-2, 0.02,
@@ -950,15 +1211,14 @@ mod tests {
                 }
             }
             println!("beta_n {beta_n}: TRT near the cusp {worst:.1e}");
-            let bound = if beta_n <= 0.3 { 1e-4 } else { 1.5e-4 };
-            assert!(worst <= bound, "beta_n {beta_n}: {worst:.2e} > {bound:.0e}");
+            assert!(worst <= 1.5e-5, "beta_n {beta_n}: {worst:.2e}");
         }
     }
 
     /// The residual lobe against the reference, which integrates it adaptively.
     #[test]
     fn residual_matches_the_reference() {
-        let aligned = AlignedFarField::new(&params(0.3), 16).unwrap();
+        let aligned = AlignedFarField::new(&params(0.3), 8).unwrap();
         for theta in THETAS {
             let (s, c) = theta.sin_cos();
             let ours = aligned.azimuthal(s, c, 0.3)[3];
@@ -1124,14 +1384,14 @@ mod tests {
     #[test]
     fn rejects_node_counts_outside_the_range() {
         assert!(AlignedFarField::new(&params(0.3), 0).is_err());
-        assert!(AlignedFarField::new(&params(0.3), 65).is_err());
-        assert!(AlignedFarField::new(&params(0.3), 64).is_ok());
+        assert!(AlignedFarField::new(&params(0.3), 33).is_err());
+        assert!(AlignedFarField::new(&params(0.3), 32).is_ok());
     }
 
     /// The hard cases of DESIGN.md: grazing, along the tangent, wi = wo, wi = -wo.
     #[test]
     fn hard_cases_are_finite() {
-        let aligned = AlignedFarField::new(&params(0.05), 16).unwrap();
+        let aligned = AlignedFarField::new(&params(0.05), 8).unwrap();
         let wo = V3::new(0.6, 0.8, 0.0);
         for wi in [
             V3::new(0.0, 1.0, 0.0),

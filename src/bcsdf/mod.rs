@@ -29,7 +29,7 @@ mod varying;
 
 pub use crate::real::InstructionSet;
 pub use aligned_far_field::{
-    AlignedFarField, ALIGNED_FAR_FIELD_ERROR_BOUNDS, MAX_NODES_PER_BRANCH,
+    AlignedFarField, ALIGNED_FAR_FIELD_ERROR_BOUNDS, MAX_NODES_PER_HALF_BRANCH,
 };
 pub(crate) use batch::{check as check_lengths, check_samples, eval_samples, pdf_samples};
 pub use batch::{
