@@ -43,8 +43,9 @@
 //! rules converge slowly; a wider `sigma` leaves `D / l_sigma`, which decays like a power of
 //! the distance of tau from the tail's end: `sigma = 2.5 s` on panels that hold the peak (`v =
 //! 0` mod 2 pi) and `4 s` on panels in the tails (chosen by measurement). A half-branch's
-//! panels are cut where v wraps through pi (D's kink); on a panel that ends at a caustic
-//! `tau = tau_c + L y^2` (the cusp map near TRT's cusp) matches the Gauss rule's coordinate.
+//! panels are cut where v wraps through pi (D's kink); on a panel that ends at a caustic (or
+//! at TRT's gamma = 0 without caustics) `tau = tau_c + L y^2` (near TRT's cusp [`cusp_map`])
+//! makes the Gauss rule's coordinate, a root of the distance to that end, smooth in y.
 //! The panels share [`MEASURE_NODES`] Gauss-Legendre nodes (or twice the rule's nodes, if
 //! more) in proportion to the square root of their mass in tau, for phi and again for -phi.
 //!
@@ -165,7 +166,7 @@ pub struct AlignedFarField {
     /// Gauss-Legendre rules on [0, 1], `rules[n - 1]` with n nodes, n = 1 up to the nodes of
     /// the measures' fine rule ([`measure_nodes`]).
     rules: Vec<Vec<(f64, f64)>>,
-    /// Nodes of each half-branch's Gauss rule.
+    /// Gauss nodes per half-branch (TRT's lobe takes twice as many).
     nodes: usize,
 }
 
