@@ -818,9 +818,11 @@ struct PanelNode {
 
 /// A coordinate x in [0, 1] over a half-branch's range of exit angles `[lo, hi]` in which the
 /// integrand without D, `cos(gamma) A_p / (2 |Phi'|) dc/dx`, is smooth: c linear in x, except
-/// at a caustic end (or TRT's gamma = 0 without caustics, [`Geometry::branches`]), where
-/// `|Phi'|` vanishes (or nearly) and the map is [`cusp_map`]'s cubic, which makes x nearly
-/// linear in gamma there: the square at an isolated caustic, the cube at TRT's cusp.
+/// at a caustic end, where `|Phi'|` vanishes like the square root of the distance in c and the
+/// map is the square, which makes x linear in gamma there, and at TRT's gamma = 0 without
+/// caustics ([`Geometry::branches`]), where `|Phi'|` is smallest and the map is [`cusp_map`]'s
+/// Taylor cubic there. (That cubic at isolated caustics, with the third derivative at gamma =
+/// 0, gave 2.0e-5 at beta_n 0.3 on the documented grid, against 2.0e-6 with the square.)
 #[derive(Clone, Copy, Debug)]
 struct ExitAngleCoordinate {
     ends: [f64; 2],
