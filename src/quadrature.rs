@@ -300,7 +300,10 @@ const QL_SWEEPS: usize = 60;
 /// components of its orthonormal eigenvectors, written over `first` (which starts as the first
 /// unit vector): the QL algorithm with implicit Wilkinson shifts (Golub and Van Loan 2013,
 /// "Matrix Computations", section 8.3), the plane rotations applied to the first row only,
-/// which is all a Gauss rule needs (Golub and Welsch 1969).
+/// which is all a Gauss rule needs (Golub and Welsch 1969). nalgebra's `SymmetricEigen` would
+/// do the same, but nalgebra comes only with the `fit` feature and its dense solver computes
+/// every eigenvector: with it the aligned far field took 51 us per query at 16 nodes per lobe
+/// in a first version, against 39 with this (one timing run of that version, this machine).
 fn tridiagonal_eigen(d: &mut [f64], mut e: Vec<f64>, first: &mut [f64]) {
     let n = d.len();
     let scale = d
