@@ -302,9 +302,9 @@ impl MassCoordinate {
     /// `e^(-|w| / s)` is the former to the power `sigma / s`, a square root raised to
     /// `half_scales`; and `|w| = -sigma ln e^(-|w| / sigma)`. One logarithm, no exponential
     /// (with `w = 2 sigma atanh(t)` and the two logistics evaluated from w, two per node, a
-    /// query at beta_n 0.3 took 14% longer, with the same errors to the digits the tests
-    /// print). The weight is 0 where `|t|` rounds to 1 (`l_sigma` vanishes
-    /// there; D is at most `e^(-pi / s)` of its peak).
+    /// query at beta_n 0.3 took about 14% longer in a timing loop, with the same errors to
+    /// the digits the tests print). The weight is 0 where `|t|` rounds to 1 (`l_sigma`
+    /// vanishes there; D is at most `e^(-pi / s)` of its peak).
     fn v(&self, tau: f64, d: &TrimmedLogistic<f64>) -> MassPoint {
         let m = self.period_mass;
         let periods = ((tau + 0.5 * m) / m).floor();
