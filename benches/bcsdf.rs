@@ -2,7 +2,8 @@
 //! (scalar), eval/pdf batched over `wide::f32x8` and `wide::f32x16` lanes (eval also from a
 //! structure of arrays, `eval_batch_soa`, against the array of structures), and eval on each
 //! instruction set the CPU runs (`HostBatch`, chosen at run time: `eval/host/Avx512`, ...;
-//! `eval/host soa/Avx512`, ... from a structure of arrays).
+//! `eval/host soa/Avx512`, ... from a structure of arrays; `eval/host soa black/Avx512`, ...
+//! the same for black hair, eumelanin 8).
 //!
 //! Every benchmark processes the same 1024 deterministic samples per iteration and reports
 //! `Throughput::Elements(1024)`, so criterion's time divided by 1024 is the cost of one
@@ -169,6 +170,10 @@ fn bench_eval(c: &mut Criterion) {
     batch::<wide::f32x8>(&mut g, "f32x8", &p, &x);
     batch::<wide::f32x16>(&mut g, "f32x16", &p, &x);
     let model = ChiangHair::<f64>::new(&p);
+    let black = ChiangHair::<f64>::new(&HairParams {
+        sigma_a: Absorption::from_melanin(8.0, 0.0).expect("a valid concentration"),
+        ..p
+    });
     let (wi_soa, wo_soa) = (components(&x.wi), components(&x.wo));
     for set in InstructionSet::ALL.into_iter().filter(|s| s.is_supported()) {
         let host = HostBatch::on(set, &model);
@@ -187,16 +192,21 @@ fn bench_eval(c: &mut Criterion) {
             })
         });
         let mut rgb = [vec![0.0_f32; N], vec![0.0_f32; N], vec![0.0_f32; N]];
-        g.bench_function(BenchmarkId::new("host soa", format!("{set:?}")), |b| {
-            b.iter(|| {
-                let (wi, wo) = (soa(black_box(&wi_soa)), soa(black_box(&wo_soa)));
-                let [r, g, b] = &mut rgb;
-                black_box(&host)
-                    .eval_soa(wi, wo, black_box(&x.h), RgbSlices { r, g, b })
-                    .expect("equal lengths");
-                black_box(&mut rgb);
-            })
-        });
+        for (name, host) in [
+            ("host soa", host),
+            ("host soa black", HostBatch::on(set, &black)),
+        ] {
+            g.bench_function(BenchmarkId::new(name, format!("{set:?}")), |b| {
+                b.iter(|| {
+                    let (wi, wo) = (soa(black_box(&wi_soa)), soa(black_box(&wo_soa)));
+                    let [r, g, b] = &mut rgb;
+                    black_box(&host)
+                        .eval_soa(wi, wo, black_box(&x.h), RgbSlices { r, g, b })
+                        .expect("equal lengths");
+                    black_box(&mut rgb);
+                })
+            });
+        }
     }
     g.finish();
 }

@@ -76,14 +76,6 @@ struct FibreLocalDirections {
     vec3 wo;
 };
 const ChiangUniforms uniforms = ChiangUniforms(0.08461118, 0.021152794, 0.3384447, 11.818769, 47.275078, 2.9546924, 11.818769, 47.275078, 2.9627328, 0.117159806, 8.535351, 1.0, 8.535351, 0.034899496, 0.99939084, 0.06975647, 0.9975641, 0.1391731, 0.99026805, 1.55, 0.6451613, vec3(0.5447, 0.9061, 1.781));
-// 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
-const float BESSEL_I0_SWITCH = 3.75;
-// 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
-const float BESSEL_I0_INV_SWITCH = 0.26666668;
-// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75
-const float BESSEL_I0_NEAR[7] = float[7](1.0, 3.5156229, 3.0899425, 1.2067492, 0.2659732, 0.0360768, 0.0045813);
-// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
-const float BESSEL_I0_FAR[9] = float[9](0.3989423, 0.01328592, 0.00225319, -0.00157565, 0.00916281, -0.02057706, 0.02635537, -0.01647633, 0.00392377);
 // 1e-30, the floor that keeps a denominator, a length or a width positive
 const float TINY = 1e-30;
 // pi
@@ -92,6 +84,14 @@ const float PI = 3.1415927;
 const float INV_TWO_PI = 0.15915494;
 // 2 pi
 const float TWO_PI = 6.2831855;
+// 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
+const float BESSEL_I0_SWITCH = 3.75;
+// 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
+const float BESSEL_I0_INV_SWITCH = 0.26666668;
+// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75
+const float BESSEL_I0_NEAR[7] = float[7](1.0, 3.5156229, 3.0899425, 1.2067492, 0.2659732, 0.0360768, 0.0045813);
+// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
+const float BESSEL_I0_FAR[9] = float[9](0.3989423, 0.01328592, 0.00225319, -0.00157565, 0.00916281, -0.02057706, 0.02635537, -0.01647633, 0.00392377);
 const FarFieldNodePairElement FAR_FIELD_OFFSET_PAIRS[32] = FarFieldNodePairElement[32](FarFieldNodePairElement(0.9999994, 1.5289318e-6), FarFieldNodePairElement(0.9999835, 1.872458e-5), FarFieldNodePairElement(0.99990034, 7.211129e-5), FarFieldNodePairElement(0.99965745, 0.00018185156), FarFieldNodePairElement(0.9991224, 0.0003673992), FarFieldNodePairElement(0.99812496, 0.0006472144), FarFieldNodePairElement(0.99645925, 0.0010384569), FarFieldNodePairElement(0.9938865, 0.0015566545), FarFieldNodePairElement(0.9901389, 0.00221535), FarFieldNodePairElement(0.9849239, 0.0030257301), FarFieldNodePairElement(0.9779291, 0.003996244), FarFieldNodePairElement(0.9688285, 0.005132225), FarFieldNodePairElement(0.9572886, 0.006435525), FarFieldNodePairElement(0.94297606, 0.007904187), FarFieldNodePairElement(0.92556554, 0.009532163), FarFieldNodePairElement(0.904748, 0.011309116), FarFieldNodePairElement(0.8802395, 0.013220307), FarFieldNodePairElement(0.85178995, 0.015246595), FarFieldNodePairElement(0.81919193, 0.017364576), FarFieldNodePairElement(0.78228873, 0.019546852), FarFieldNodePairElement(0.74098223, 0.021762462), FarFieldNodePairElement(0.69523925, 0.023977457), FarFieldNodePairElement(0.6450969, 0.02615561), FarFieldNodePairElement(0.5906664, 0.028259275), FarFieldNodePairElement(0.5321349, 0.030250335), FarFieldNodePairElement(0.46976525, 0.032091226), FarFieldNodePairElement(0.4038941, 0.033746015), FarFieldNodePairElement(0.33492747, 0.035181463), FarFieldNodePairElement(0.26333427, 0.036368046), FarFieldNodePairElement(0.18963791, 0.03728089), FarFieldNodePairElement(0.11440627, 0.037900586), FarFieldNodePairElement(0.038240023, 0.03821382));
 
 layout(std430, binding = 0) readonly buffer type_6_block_0Compute { float _group_0_binding_0_cs[]; };
@@ -104,21 +104,6 @@ FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
     float _e27 = ((wi_in.y * wo_in.z) + -((wi_in.z * wo_in.y)));
     float _e30 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
     return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e27, ((0.0 < (abs(_e27) + abs(_e30))) ? _e30 : 1.0)));
-}
-
-// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
-float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
-    float _e7 = (cos_i * cos_o);
-    float _e10 = ((-(sin_i) * sin_o) + _e7);
-    float _e13 = ((sin_i * cos_o) + (cos_i * sin_o));
-    float _e14 = abs(_e10);
-    float _e23 = max((_e7 * inv_variance_r), 0.0);
-    bool _e24 = (_e23 < BESSEL_I0_SWITCH);
-    float _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    float _e28 = (_e27 * _e27);
-    float _e56 = (1.0 / max(_e23, BESSEL_I0_SWITCH));
-    float _e57 = (BESSEL_I0_SWITCH * _e56);
-    return ((lobe_norm_r * (_e24 ? ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)))) * exp(((-((((_e13 * _e13) / (1.0 + _e14)) + (_e14 - _e10))) * inv_variance_r) + (_e24 ? -(_e23) : 0.0))));
 }
 
 // hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
@@ -190,6 +175,21 @@ FarFieldNodePair far_field_node_pair(vec3 r_in, vec3 tt_in, vec3 trt_in, vec3 re
     return FarFieldNodePair((r_in + (weight * (vec3(_e36.r, _e45.r, _e54.r) * _e78))), (tt_in + (weight * (vec3(_e36.tt, _e45.tt, _e54.tt) * _e79))), (trt_in + (weight * (vec3(_e36.trt, _e45.trt, _e54.trt) * _e80))), (residual_in + (weight * (vec3(_e36.residual, _e45.residual, _e54.residual) * _e81))));
 }
 
+// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
+float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
+    float _e7 = (cos_i * cos_o);
+    float _e10 = ((-(sin_i) * sin_o) + _e7);
+    float _e13 = ((sin_i * cos_o) + (cos_i * sin_o));
+    float _e14 = abs(_e10);
+    float _e23 = max((_e7 * inv_variance_r), 0.0);
+    bool _e24 = (_e23 < BESSEL_I0_SWITCH);
+    float _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    float _e28 = (_e27 * _e27);
+    float _e56 = (1.0 / max(_e23, BESSEL_I0_SWITCH));
+    float _e57 = (BESSEL_I0_SWITCH * _e56);
+    return ((lobe_norm_r * (_e24 ? ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)))) * exp(((-((((_e13 * _e13) / (1.0 + _e14)) + (_e14 - _e10))) * inv_variance_r) + (_e24 ? -(_e23) : 0.0))));
+}
+
 // hair_bcsdf: `hairmath eval --model chiang-far`, the far field of Chiang et al. 2016: S(wi, wo) averaged over h uniform in [-1, 1], with a fixed Gauss-Legendre rule over h or the adaptive reference
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo) {
@@ -200,13 +200,8 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     uint k = 0u;
     FibreAngles _e30 = fibre_angles(wi, wo);
     float phi = -(_e30.phi);
-    float _e37 = -(uniforms.sin_2_alpha);
-    float _e46 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e37)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) + -((_e30.sin_theta_o * _e37)))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
-    float _e55 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) + -((_e30.sin_theta_o * uniforms.sin_alpha)))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
-    float _e64 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) + -((_e30.sin_theta_o * uniforms.sin_4_alpha)))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    float _e65 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    float _e66 = (_e30.sin_theta_o * uniforms.inv_eta);
-    float cos_theta_t = sqrt(max(((-(_e66) * _e66) + 1.0), 0.0));
+    float _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
+    float cos_theta_t = sqrt(max(((-(_e37) * _e37) + 1.0), 0.0));
     float inv_cos_theta_t = (1.0 / cos_theta_t);
     r = vec3(0.0);
     tt = vec3(0.0);
@@ -215,31 +210,36 @@ vec3 hair_bcsdf(vec3 wi, vec3 wo) {
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e101 = k;
-            k = (_e101 + 1u);
+            uint _e72 = k;
+            k = (_e72 + 1u);
         }
         loop_init = false;
-        uint _e84 = k;
-        if ((_e84 < 32u)) {
+        uint _e55 = k;
+        if ((_e55 < 32u)) {
         } else {
             break;
         }
-        uint _e88 = k;
-        vec3 _e90 = r;
-        vec3 _e91 = tt;
-        vec3 _e92 = trt;
-        vec3 _e93 = residual;
-        FarFieldNodePair _e96 = far_field_node_pair(_e90, _e91, _e92, _e93, FAR_FIELD_OFFSET_PAIRS[_e88].h, FAR_FIELD_OFFSET_PAIRS[_e88].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
-        r = _e96.r;
-        tt = _e96.tt;
-        trt = _e96.trt;
-        residual = _e96.residual;
+        uint _e59 = k;
+        vec3 _e61 = r;
+        vec3 _e62 = tt;
+        vec3 _e63 = trt;
+        vec3 _e64 = residual;
+        FarFieldNodePair _e67 = far_field_node_pair(_e61, _e62, _e63, _e64, FAR_FIELD_OFFSET_PAIRS[_e59].h, FAR_FIELD_OFFSET_PAIRS[_e59].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        r = _e67.r;
+        tt = _e67.tt;
+        trt = _e67.trt;
+        residual = _e67.residual;
     }
-    vec3 _e104 = r;
-    vec3 _e105 = tt;
-    vec3 _e106 = trt;
-    vec3 _e107 = residual;
-    return ((_e65 * _e107) + ((_e64 * _e106) + ((_e55 * _e105) + (_e46 * _e104))));
+    vec3 _e75 = r;
+    vec3 _e76 = tt;
+    vec3 _e77 = trt;
+    vec3 _e78 = residual;
+    float _e91 = -(uniforms.sin_2_alpha);
+    float _e100 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e91)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) + -((_e30.sin_theta_o * _e91)))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    float _e109 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) + -((_e30.sin_theta_o * uniforms.sin_alpha)))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    float _e118 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) + -((_e30.sin_theta_o * uniforms.sin_4_alpha)))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    float _e119 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    return ((_e119 * _e78) + ((_e118 * _e77) + ((_e109 * _e76) + (_e100 * _e75))));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -81,14 +81,6 @@ struct FibreLocalDirections {
 }
 
 const uniforms: ChiangUniforms = ChiangUniforms(0.08461118f, 0.021152794f, 0.3384447f, 11.818769f, 47.275078f, 2.9546924f, 11.818769f, 47.275078f, 2.9627328f, 0.117159806f, 8.535351f, 1f, 8.535351f, 0.034899496f, 0.99939084f, 0.06975647f, 0.9975641f, 0.1391731f, 0.99026805f, 1.55f, 0.6451613f, vec3<f32>(0.5447f, 0.9061f, 1.781f));
-// 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
-const BESSEL_I0_SWITCH: f32 = 3.75f;
-// 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
-const BESSEL_I0_INV_SWITCH: f32 = 0.26666668f;
-// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75
-const BESSEL_I0_NEAR: array<f32, 7> = array<f32, 7>(1f, 3.5156229f, 3.0899425f, 1.2067492f, 0.2659732f, 0.0360768f, 0.0045813f);
-// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
-const BESSEL_I0_FAR: array<f32, 9> = array<f32, 9>(0.3989423f, 0.01328592f, 0.00225319f, -0.00157565f, 0.00916281f, -0.02057706f, 0.02635537f, -0.01647633f, 0.00392377f);
 // 1e-30, the floor that keeps a denominator, a length or a width positive
 const TINY: f32 = 0.000000000000000000000000000001f;
 // pi
@@ -97,6 +89,14 @@ const PI: f32 = 3.1415927f;
 const INV_TWO_PI: f32 = 0.15915494f;
 // 2 pi
 const TWO_PI: f32 = 6.2831855f;
+// 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
+const BESSEL_I0_SWITCH: f32 = 3.75f;
+// 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
+const BESSEL_I0_INV_SWITCH: f32 = 0.26666668f;
+// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75
+const BESSEL_I0_NEAR: array<f32, 7> = array<f32, 7>(1f, 3.5156229f, 3.0899425f, 1.2067492f, 0.2659732f, 0.0360768f, 0.0045813f);
+// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
+const BESSEL_I0_FAR: array<f32, 9> = array<f32, 9>(0.3989423f, 0.01328592f, 0.00225319f, -0.00157565f, 0.00916281f, -0.02057706f, 0.02635537f, -0.01647633f, 0.00392377f);
 const FAR_FIELD_OFFSET_PAIRS: array<FarFieldNodePairElement, 32> = array<FarFieldNodePairElement, 32>(FarFieldNodePairElement(0.9999994f, 0.0000015289318f), FarFieldNodePairElement(0.9999835f, 0.00001872458f), FarFieldNodePairElement(0.99990034f, 0.00007211129f), FarFieldNodePairElement(0.99965745f, 0.00018185156f), FarFieldNodePairElement(0.9991224f, 0.0003673992f), FarFieldNodePairElement(0.99812496f, 0.0006472144f), FarFieldNodePairElement(0.99645925f, 0.0010384569f), FarFieldNodePairElement(0.9938865f, 0.0015566545f), FarFieldNodePairElement(0.9901389f, 0.00221535f), FarFieldNodePairElement(0.9849239f, 0.0030257301f), FarFieldNodePairElement(0.9779291f, 0.003996244f), FarFieldNodePairElement(0.9688285f, 0.005132225f), FarFieldNodePairElement(0.9572886f, 0.006435525f), FarFieldNodePairElement(0.94297606f, 0.007904187f), FarFieldNodePairElement(0.92556554f, 0.009532163f), FarFieldNodePairElement(0.904748f, 0.011309116f), FarFieldNodePairElement(0.8802395f, 0.013220307f), FarFieldNodePairElement(0.85178995f, 0.015246595f), FarFieldNodePairElement(0.81919193f, 0.017364576f), FarFieldNodePairElement(0.78228873f, 0.019546852f), FarFieldNodePairElement(0.74098223f, 0.021762462f), FarFieldNodePairElement(0.69523925f, 0.023977457f), FarFieldNodePairElement(0.6450969f, 0.02615561f), FarFieldNodePairElement(0.5906664f, 0.028259275f), FarFieldNodePairElement(0.5321349f, 0.030250335f), FarFieldNodePairElement(0.46976525f, 0.032091226f), FarFieldNodePairElement(0.4038941f, 0.033746015f), FarFieldNodePairElement(0.33492747f, 0.035181463f), FarFieldNodePairElement(0.26333427f, 0.036368046f), FarFieldNodePairElement(0.18963791f, 0.03728089f), FarFieldNodePairElement(0.11440627f, 0.037900586f), FarFieldNodePairElement(0.038240023f, 0.03821382f));
 
 // hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
@@ -104,21 +104,6 @@ fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
     let _e27 = ((wi_in.y * wo_in.z) + -((wi_in.z * wo_in.y)));
     let _e30 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
     return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e27, select(1f, _e30, (0f < (abs(_e27) + abs(_e30))))));
-}
-
-// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
-fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32, lobe_norm_r: f32) -> f32 {
-    let _e7 = (cos_i * cos_o);
-    let _e10 = ((-(sin_i) * sin_o) + _e7);
-    let _e13 = ((sin_i * cos_o) + (cos_i * sin_o));
-    let _e14 = abs(_e10);
-    let _e23 = max((_e7 * inv_variance_r), 0f);
-    let _e24 = (_e23 < BESSEL_I0_SWITCH);
-    let _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    let _e28 = (_e27 * _e27);
-    let _e56 = (1f / max(_e23, BESSEL_I0_SWITCH));
-    let _e57 = (BESSEL_I0_SWITCH * _e56);
-    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)), ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]), _e24)) * exp(((-((((_e13 * _e13) / (1f + _e14)) + (_e14 - _e10))) * inv_variance_r) + select(0f, -(_e23), _e24))));
 }
 
 // hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
@@ -190,6 +175,21 @@ fn far_field_node_pair(r_in: vec3<f32>, tt_in: vec3<f32>, trt_in: vec3<f32>, res
     return FarFieldNodePair((r_in + (weight * (vec3<f32>(_e36.r, _e45.r, _e54.r) * _e78))), (tt_in + (weight * (vec3<f32>(_e36.tt, _e45.tt, _e54.tt) * _e79))), (trt_in + (weight * (vec3<f32>(_e36.trt, _e45.trt, _e54.trt) * _e80))), (residual_in + (weight * (vec3<f32>(_e36.residual, _e45.residual, _e54.residual) * _e81))));
 }
 
+// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
+fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32, lobe_norm_r: f32) -> f32 {
+    let _e7 = (cos_i * cos_o);
+    let _e10 = ((-(sin_i) * sin_o) + _e7);
+    let _e13 = ((sin_i * cos_o) + (cos_i * sin_o));
+    let _e14 = abs(_e10);
+    let _e23 = max((_e7 * inv_variance_r), 0f);
+    let _e24 = (_e23 < BESSEL_I0_SWITCH);
+    let _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    let _e28 = (_e27 * _e27);
+    let _e56 = (1f / max(_e23, BESSEL_I0_SWITCH));
+    let _e57 = (BESSEL_I0_SWITCH * _e56);
+    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)), ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]), _e24)) * exp(((-((((_e13 * _e13) / (1f + _e14)) + (_e14 - _e10))) * inv_variance_r) + select(0f, -(_e23), _e24))));
+}
+
 // hair_bcsdf: `hairmath eval --model chiang-far`, the far field of Chiang et al. 2016: S(wi, wo) averaged over h uniform in [-1, 1], with a fixed Gauss-Legendre rule over h or the adaptive reference
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
@@ -201,44 +201,44 @@ fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
 
     let _e30 = fibre_angles(wi, wo);
     let phi = -(_e30.phi);
-    let _e37 = -(uniforms.sin_2_alpha);
-    let _e46 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e37)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) + -((_e30.sin_theta_o * _e37)))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
-    let _e55 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) + -((_e30.sin_theta_o * uniforms.sin_alpha)))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
-    let _e64 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) + -((_e30.sin_theta_o * uniforms.sin_4_alpha)))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    let _e65 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    let _e66 = (_e30.sin_theta_o * uniforms.inv_eta);
-    let cos_theta_t = sqrt(max(((-(_e66) * _e66) + 1f), 0f));
+    let _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
+    let cos_theta_t = sqrt(max(((-(_e37) * _e37) + 1f), 0f));
     let inv_cos_theta_t = (1f / cos_theta_t);
     r = vec3(0f);
     tt = vec3(0f);
     trt = vec3(0f);
     residual = vec3(0f);
     loop {
-        let _e84 = k;
-        if (_e84 < 32u) {
+        let _e55 = k;
+        if (_e55 < 32u) {
         } else {
             break;
         }
-        let _e88 = k;
-        let _e90 = r;
-        let _e91 = tt;
-        let _e92 = trt;
-        let _e93 = residual;
-        let _e96 = far_field_node_pair(_e90, _e91, _e92, _e93, FAR_FIELD_OFFSET_PAIRS[_e88].h, FAR_FIELD_OFFSET_PAIRS[_e88].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
-        r = _e96.r;
-        tt = _e96.tt;
-        trt = _e96.trt;
-        residual = _e96.residual;
+        let _e59 = k;
+        let _e61 = r;
+        let _e62 = tt;
+        let _e63 = trt;
+        let _e64 = residual;
+        let _e67 = far_field_node_pair(_e61, _e62, _e63, _e64, FAR_FIELD_OFFSET_PAIRS[_e59].h, FAR_FIELD_OFFSET_PAIRS[_e59].weight, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta, uniforms.sigma_a, phi, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+        r = _e67.r;
+        tt = _e67.tt;
+        trt = _e67.trt;
+        residual = _e67.residual;
         continuing {
-            let _e101 = k;
-            k = (_e101 + 1u);
+            let _e72 = k;
+            k = (_e72 + 1u);
         }
     }
-    let _e104 = r;
-    let _e105 = tt;
-    let _e106 = trt;
-    let _e107 = residual;
-    return ((_e65 * _e107) + ((_e64 * _e106) + ((_e55 * _e105) + (_e46 * _e104))));
+    let _e75 = r;
+    let _e76 = tt;
+    let _e77 = trt;
+    let _e78 = residual;
+    let _e91 = -(uniforms.sin_2_alpha);
+    let _e100 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e91)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) + -((_e30.sin_theta_o * _e91)))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    let _e109 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) + -((_e30.sin_theta_o * uniforms.sin_alpha)))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    let _e118 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) + -((_e30.sin_theta_o * uniforms.sin_4_alpha)))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    let _e119 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    return ((_e119 * _e78) + ((_e118 * _e77) + ((_e109 * _e76) + (_e100 * _e75))));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -66,14 +66,6 @@ struct FibreLocalDirections {
     vec3 wo;
 };
 const ChiangUniforms uniforms = ChiangUniforms(0.08461118, 0.021152794, 0.3384447, 11.818769, 47.275078, 2.9546924, 11.818769, 47.275078, 2.9627328, 0.117159806, 8.535351, 1.0, 8.535351, 0.034899496, 0.99939084, 0.06975647, 0.9975641, 0.1391731, 0.99026805, 1.55, 0.6451613, vec3(0.5447, 0.9061, 1.781));
-// 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
-const float BESSEL_I0_SWITCH = 3.75;
-// 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
-const float BESSEL_I0_INV_SWITCH = 0.26666668;
-// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75
-const float BESSEL_I0_NEAR[7] = float[7](1.0, 3.5156229, 3.0899425, 1.2067492, 0.2659732, 0.0360768, 0.0045813);
-// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
-const float BESSEL_I0_FAR[9] = float[9](0.3989423, 0.01328592, 0.00225319, -0.00157565, 0.00916281, -0.02057706, 0.02635537, -0.01647633, 0.00392377);
 // 1e-30, the floor that keeps a denominator, a length or a width positive
 const float TINY = 1e-30;
 // pi
@@ -82,6 +74,14 @@ const float PI = 3.1415927;
 const float INV_TWO_PI = 0.15915494;
 // 2 pi
 const float TWO_PI = 6.2831855;
+// 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
+const float BESSEL_I0_SWITCH = 3.75;
+// 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
+const float BESSEL_I0_INV_SWITCH = 0.26666668;
+// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75
+const float BESSEL_I0_NEAR[7] = float[7](1.0, 3.5156229, 3.0899425, 1.2067492, 0.2659732, 0.0360768, 0.0045813);
+// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
+const float BESSEL_I0_FAR[9] = float[9](0.3989423, 0.01328592, 0.00225319, -0.00157565, 0.00916281, -0.02057706, 0.02635537, -0.01647633, 0.00392377);
 
 layout(std430, binding = 0) readonly buffer type_5_block_0Compute { float _group_0_binding_0_cs[]; };
 
@@ -93,21 +93,6 @@ FibreAngles fibre_angles(vec3 wi_in, vec3 wo_in) {
     float _e27 = ((wi_in.y * wo_in.z) + -((wi_in.z * wo_in.y)));
     float _e30 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
     return FibreAngles(min(max(wi_in.x, -1.0), 1.0), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1.0), min(max(wo_in.x, -1.0), 1.0), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1.0), atan(_e27, ((0.0 < (abs(_e27) + abs(_e30))) ? _e30 : 1.0)));
-}
-
-// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
-float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
-    float _e7 = (cos_i * cos_o);
-    float _e10 = ((-(sin_i) * sin_o) + _e7);
-    float _e13 = ((sin_i * cos_o) + (cos_i * sin_o));
-    float _e14 = abs(_e10);
-    float _e23 = max((_e7 * inv_variance_r), 0.0);
-    bool _e24 = (_e23 < BESSEL_I0_SWITCH);
-    float _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    float _e28 = (_e27 * _e27);
-    float _e56 = (1.0 / max(_e23, BESSEL_I0_SWITCH));
-    float _e57 = (BESSEL_I0_SWITCH * _e56);
-    return ((lobe_norm_r * (_e24 ? ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)))) * exp(((-((((_e13 * _e13) / (1.0 + _e14)) + (_e14 - _e10))) * inv_variance_r) + (_e24 ? -(_e23) : 0.0))));
 }
 
 // hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
@@ -162,30 +147,45 @@ TrimmedLogistics trimmed_logistics(float dphi_r, float dphi_tt, float dphi_trt, 
     return TrimmedLogistics(((_e8 * logistic_norm) / (_e10 * _e10)), ((_e17 * logistic_norm) / (_e18 * _e18)), ((_e25 * logistic_norm) / (_e26 * _e26)));
 }
 
+// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
+float deon_lobe(float sin_i, float cos_i, float sin_o, float cos_o, float inv_variance_r, float lobe_norm_r) {
+    float _e7 = (cos_i * cos_o);
+    float _e10 = ((-(sin_i) * sin_o) + _e7);
+    float _e13 = ((sin_i * cos_o) + (cos_i * sin_o));
+    float _e14 = abs(_e10);
+    float _e23 = max((_e7 * inv_variance_r), 0.0);
+    bool _e24 = (_e23 < BESSEL_I0_SWITCH);
+    float _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    float _e28 = (_e27 * _e27);
+    float _e56 = (1.0 / max(_e23, BESSEL_I0_SWITCH));
+    float _e57 = (BESSEL_I0_SWITCH * _e56);
+    return ((lobe_norm_r * (_e24 ? ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]) : (((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)))) * exp(((-((((_e13 * _e13) / (1.0 + _e14)) + (_e14 - _e10))) * inv_variance_r) + (_e24 ? -(_e23) : 0.0))));
+}
+
 // hair_bcsdf: `hairmath eval --model chiang`, Chiang et al. 2016 (pbrt-v4 HairBxDF): the near-field reference, S(wi, wo, h)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 vec3 hair_bcsdf(vec3 wi, vec3 wo, float h) {
     FibreAngles _e30 = fibre_angles(wi, wo);
     float phi = -(_e30.phi);
-    float _e37 = -(uniforms.sin_2_alpha);
-    float _e46 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e37)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) + -((_e30.sin_theta_o * _e37)))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
-    float _e55 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) + -((_e30.sin_theta_o * uniforms.sin_alpha)))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
-    float _e64 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) + -((_e30.sin_theta_o * uniforms.sin_4_alpha)))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    float _e65 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    float _e66 = (_e30.sin_theta_o * uniforms.inv_eta);
-    float cos_theta_t = sqrt(max(((-(_e66) * _e66) + 1.0), 0.0));
+    float _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
+    float cos_theta_t = sqrt(max(((-(_e37) * _e37) + 1.0), 0.0));
     float inv_cos_theta_t = (1.0 / cos_theta_t);
-    FibrePath _e75 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
-    Attenuations _e83 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.x) * _e75.segment_length)));
-    Attenuations _e91 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.y) * _e75.segment_length)));
-    Attenuations _e99 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.z) * _e75.segment_length)));
-    ExitAzimuths _e104 = exit_azimuths(phi, _e75.gamma_o, _e75.gamma_t);
-    TrimmedLogistics _e108 = trimmed_logistics(_e104.r, _e104.tt, _e104.trt, uniforms.logistic_inv_scale, uniforms.logistic_norm);
-    float _e113 = (_e46 * _e108.r);
-    float _e114 = (_e55 * _e108.tt);
-    float _e115 = (_e64 * _e108.trt);
-    float _e116 = (_e65 * INV_TWO_PI);
-    return ((_e116 * vec3(_e83.residual, _e91.residual, _e99.residual)) + ((_e115 * vec3(_e83.trt, _e91.trt, _e99.trt)) + ((_e114 * vec3(_e83.tt, _e91.tt, _e99.tt)) + (_e113 * vec3(_e83.r, _e91.r, _e99.r)))));
+    FibrePath _e46 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
+    Attenuations _e54 = attenuations(_e46.fresnel, exp((-(uniforms.sigma_a.x) * _e46.segment_length)));
+    Attenuations _e62 = attenuations(_e46.fresnel, exp((-(uniforms.sigma_a.y) * _e46.segment_length)));
+    Attenuations _e70 = attenuations(_e46.fresnel, exp((-(uniforms.sigma_a.z) * _e46.segment_length)));
+    ExitAzimuths _e75 = exit_azimuths(phi, _e46.gamma_o, _e46.gamma_t);
+    TrimmedLogistics _e79 = trimmed_logistics(_e75.r, _e75.tt, _e75.trt, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+    float _e84 = -(uniforms.sin_2_alpha);
+    float _e93 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e84)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) + -((_e30.sin_theta_o * _e84)))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    float _e102 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) + -((_e30.sin_theta_o * uniforms.sin_alpha)))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    float _e111 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) + -((_e30.sin_theta_o * uniforms.sin_4_alpha)))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    float _e112 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    float _e113 = (_e93 * _e79.r);
+    float _e114 = (_e102 * _e79.tt);
+    float _e115 = (_e111 * _e79.trt);
+    float _e116 = (_e112 * INV_TWO_PI);
+    return ((_e116 * vec3(_e54.residual, _e62.residual, _e70.residual)) + ((_e115 * vec3(_e54.trt, _e62.trt, _e70.trt)) + ((_e114 * vec3(_e54.tt, _e62.tt, _e70.tt)) + (_e113 * vec3(_e54.r, _e62.r, _e70.r)))));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -69,14 +69,6 @@ struct FibreLocalDirections {
 }
 
 const uniforms: ChiangUniforms = ChiangUniforms(0.08461118f, 0.021152794f, 0.3384447f, 11.818769f, 47.275078f, 2.9546924f, 11.818769f, 47.275078f, 2.9627328f, 0.117159806f, 8.535351f, 1f, 8.535351f, 0.034899496f, 0.99939084f, 0.06975647f, 0.9975641f, 0.1391731f, 0.99026805f, 1.55f, 0.6451613f, vec3<f32>(0.5447f, 0.9061f, 1.781f));
-// 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
-const BESSEL_I0_SWITCH: f32 = 3.75f;
-// 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
-const BESSEL_I0_INV_SWITCH: f32 = 0.26666668f;
-// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75
-const BESSEL_I0_NEAR: array<f32, 7> = array<f32, 7>(1f, 3.5156229f, 3.0899425f, 1.2067492f, 0.2659732f, 0.0360768f, 0.0045813f);
-// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
-const BESSEL_I0_FAR: array<f32, 9> = array<f32, 9>(0.3989423f, 0.01328592f, 0.00225319f, -0.00157565f, 0.00916281f, -0.02057706f, 0.02635537f, -0.01647633f, 0.00392377f);
 // 1e-30, the floor that keeps a denominator, a length or a width positive
 const TINY: f32 = 0.000000000000000000000000000001f;
 // pi
@@ -85,27 +77,20 @@ const PI: f32 = 3.1415927f;
 const INV_TWO_PI: f32 = 0.15915494f;
 // 2 pi
 const TWO_PI: f32 = 6.2831855f;
+// 3.75, where I0 switches from Abramowitz and Stegun 9.8.1 to 9.8.2
+const BESSEL_I0_SWITCH: f32 = 3.75f;
+// 1 / 3.75, the argument scale of Abramowitz and Stegun 9.8.1
+const BESSEL_I0_INV_SWITCH: f32 = 0.26666668f;
+// Abramowitz and Stegun 9.8.1: I0(x) = sum a_k (x/3.75)^(2k), |x| <= 3.75
+const BESSEL_I0_NEAR: array<f32, 7> = array<f32, 7>(1f, 3.5156229f, 3.0899425f, 1.2067492f, 0.2659732f, 0.0360768f, 0.0045813f);
+// Abramowitz and Stegun 9.8.2: sqrt(x) e^-x I0(x) = sum b_k (3.75/x)^k, x >= 3.75
+const BESSEL_I0_FAR: array<f32, 9> = array<f32, 9>(0.3989423f, 0.01328592f, 0.00225319f, -0.00157565f, 0.00916281f, -0.02057706f, 0.02635537f, -0.01647633f, 0.00392377f);
 
 // hairmath::geometry::fibre_angles -- the local frame of docs/ARCHITECTURE.md: sin theta = w.x, phi in the YZ plane
 fn fibre_angles(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FibreAngles {
     let _e27 = ((wi_in.y * wo_in.z) + -((wi_in.z * wo_in.y)));
     let _e30 = ((wi_in.y * wo_in.y) + (wi_in.z * wo_in.z));
     return FibreAngles(min(max(wi_in.x, -1f), 1f), min(sqrt(((wi_in.y * wi_in.y) + (wi_in.z * wi_in.z))), 1f), min(max(wo_in.x, -1f), 1f), min(sqrt(((wo_in.y * wo_in.y) + (wo_in.z * wo_in.z))), 1f), atan2(_e27, select(1f, _e30, (0f < (abs(_e27) + abs(_e30))))));
-}
-
-// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
-fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32, lobe_norm_r: f32) -> f32 {
-    let _e7 = (cos_i * cos_o);
-    let _e10 = ((-(sin_i) * sin_o) + _e7);
-    let _e13 = ((sin_i * cos_o) + (cos_i * sin_o));
-    let _e14 = abs(_e10);
-    let _e23 = max((_e7 * inv_variance_r), 0f);
-    let _e24 = (_e23 < BESSEL_I0_SWITCH);
-    let _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
-    let _e28 = (_e27 * _e27);
-    let _e56 = (1f / max(_e23, BESSEL_I0_SWITCH));
-    let _e57 = (BESSEL_I0_SWITCH * _e56);
-    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)), ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]), _e24)) * exp(((-((((_e13 * _e13) / (1f + _e14)) + (_e14 - _e10))) * inv_variance_r) + select(0f, -(_e23), _e24))));
 }
 
 // hairmath::fresnel::fresnel_of_cosines -- Born and Wolf, section 1.5 (unpolarised dielectric reflectance, both cosines given)
@@ -160,30 +145,45 @@ fn trimmed_logistics(dphi_r: f32, dphi_tt: f32, dphi_trt: f32, logistic_inv_scal
     return TrimmedLogistics(((_e8 * logistic_norm) / (_e10 * _e10)), ((_e17 * logistic_norm) / (_e18 * _e18)), ((_e25 * logistic_norm) / (_e26 * _e26)));
 }
 
+// hairmath::lobe::deon::deon_lobe -- d'Eon et al. 2011, eq. 7
+fn deon_lobe(sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, inv_variance_r: f32, lobe_norm_r: f32) -> f32 {
+    let _e7 = (cos_i * cos_o);
+    let _e10 = ((-(sin_i) * sin_o) + _e7);
+    let _e13 = ((sin_i * cos_o) + (cos_i * sin_o));
+    let _e14 = abs(_e10);
+    let _e23 = max((_e7 * inv_variance_r), 0f);
+    let _e24 = (_e23 < BESSEL_I0_SWITCH);
+    let _e27 = (min(_e23, BESSEL_I0_SWITCH) * BESSEL_I0_INV_SWITCH);
+    let _e28 = (_e27 * _e27);
+    let _e56 = (1f / max(_e23, BESSEL_I0_SWITCH));
+    let _e57 = (BESSEL_I0_SWITCH * _e56);
+    return ((lobe_norm_r * select((((((((((((((((((BESSEL_I0_FAR[8] * _e57) + BESSEL_I0_FAR[7]) * _e57) + BESSEL_I0_FAR[6]) * _e57) + BESSEL_I0_FAR[5]) * _e57) + BESSEL_I0_FAR[4]) * _e57) + BESSEL_I0_FAR[3]) * _e57) + BESSEL_I0_FAR[2]) * _e57) + BESSEL_I0_FAR[1]) * _e57) + BESSEL_I0_FAR[0]) * sqrt(_e56)), ((((((((((((BESSEL_I0_NEAR[6] * _e28) + BESSEL_I0_NEAR[5]) * _e28) + BESSEL_I0_NEAR[4]) * _e28) + BESSEL_I0_NEAR[3]) * _e28) + BESSEL_I0_NEAR[2]) * _e28) + BESSEL_I0_NEAR[1]) * _e28) + BESSEL_I0_NEAR[0]), _e24)) * exp(((-((((_e13 * _e13) / (1f + _e14)) + (_e14 - _e10))) * inv_variance_r) + select(0f, -(_e23), _e24))));
+}
+
 // hair_bcsdf: `hairmath eval --model chiang`, Chiang et al. 2016 (pbrt-v4 HairBxDF): the near-field reference, S(wi, wo, h)
 // (hairmath::registry::MODELS; Bcsdf::eval in the local frame, tangent +X, no cosine factor)
 fn hair_bcsdf(wi: vec3<f32>, wo: vec3<f32>, h: f32) -> vec3<f32> {
     let _e30 = fibre_angles(wi, wo);
     let phi = -(_e30.phi);
-    let _e37 = -(uniforms.sin_2_alpha);
-    let _e46 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e37)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) + -((_e30.sin_theta_o * _e37)))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
-    let _e55 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) + -((_e30.sin_theta_o * uniforms.sin_alpha)))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
-    let _e64 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) + -((_e30.sin_theta_o * uniforms.sin_4_alpha)))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    let _e65 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
-    let _e66 = (_e30.sin_theta_o * uniforms.inv_eta);
-    let cos_theta_t = sqrt(max(((-(_e66) * _e66) + 1f), 0f));
+    let _e37 = (_e30.sin_theta_o * uniforms.inv_eta);
+    let cos_theta_t = sqrt(max(((-(_e37) * _e37) + 1f), 0f));
     let inv_cos_theta_t = (1f / cos_theta_t);
-    let _e75 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
-    let _e83 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.x) * _e75.segment_length)));
-    let _e91 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.y) * _e75.segment_length)));
-    let _e99 = attenuations(_e75.fresnel, exp((-(uniforms.sigma_a.z) * _e75.segment_length)));
-    let _e104 = exit_azimuths(phi, _e75.gamma_o, _e75.gamma_t);
-    let _e108 = trimmed_logistics(_e104.r, _e104.tt, _e104.trt, uniforms.logistic_inv_scale, uniforms.logistic_norm);
-    let _e113 = (_e46 * _e108.r);
-    let _e114 = (_e55 * _e108.tt);
-    let _e115 = (_e64 * _e108.trt);
-    let _e116 = (_e65 * INV_TWO_PI);
-    return ((_e116 * vec3<f32>(_e83.residual, _e91.residual, _e99.residual)) + ((_e115 * vec3<f32>(_e83.trt, _e91.trt, _e99.trt)) + ((_e114 * vec3<f32>(_e83.tt, _e91.tt, _e99.tt)) + (_e113 * vec3<f32>(_e83.r, _e91.r, _e99.r)))));
+    let _e46 = fibre_path(h, _e30.cos_theta_o, uniforms.inv_eta, inv_cos_theta_t, cos_theta_t, uniforms.eta);
+    let _e54 = attenuations(_e46.fresnel, exp((-(uniforms.sigma_a.x) * _e46.segment_length)));
+    let _e62 = attenuations(_e46.fresnel, exp((-(uniforms.sigma_a.y) * _e46.segment_length)));
+    let _e70 = attenuations(_e46.fresnel, exp((-(uniforms.sigma_a.z) * _e46.segment_length)));
+    let _e75 = exit_azimuths(phi, _e46.gamma_o, _e46.gamma_t);
+    let _e79 = trimmed_logistics(_e75.r, _e75.tt, _e75.trt, uniforms.logistic_inv_scale, uniforms.logistic_norm);
+    let _e84 = -(uniforms.sin_2_alpha);
+    let _e93 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_2_alpha) + (_e30.cos_theta_o * _e84)), abs(((_e30.cos_theta_o * uniforms.cos_2_alpha) + -((_e30.sin_theta_o * _e84)))), uniforms.inv_variance_r, uniforms.lobe_norm_r);
+    let _e102 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_alpha) + (_e30.cos_theta_o * uniforms.sin_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_alpha) + -((_e30.sin_theta_o * uniforms.sin_alpha)))), uniforms.inv_variance_tt, uniforms.lobe_norm_tt);
+    let _e111 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, ((_e30.sin_theta_o * uniforms.cos_4_alpha) + (_e30.cos_theta_o * uniforms.sin_4_alpha)), abs(((_e30.cos_theta_o * uniforms.cos_4_alpha) + -((_e30.sin_theta_o * uniforms.sin_4_alpha)))), uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    let _e112 = deon_lobe(_e30.sin_theta_i, _e30.cos_theta_i, _e30.sin_theta_o, _e30.cos_theta_o, uniforms.inv_variance_trt, uniforms.lobe_norm_trt);
+    let _e113 = (_e93 * _e79.r);
+    let _e114 = (_e102 * _e79.tt);
+    let _e115 = (_e111 * _e79.trt);
+    let _e116 = (_e112 * INV_TWO_PI);
+    return ((_e116 * vec3<f32>(_e54.residual, _e62.residual, _e70.residual)) + ((_e115 * vec3<f32>(_e54.trt, _e62.trt, _e70.trt)) + ((_e114 * vec3<f32>(_e54.tt, _e62.tt, _e70.tt)) + (_e113 * vec3<f32>(_e54.r, _e62.r, _e70.r)))));
 }
 
 // hairmath::geometry::fibre_frame -- Duff et al. 2017, listing 3

@@ -14,7 +14,10 @@ pub const LOBES_WITH_RESIDUAL: usize = 4;
 ///
 /// The residual is written as `(1 - f)^2 f^2 t^3 / max(1 - f t, tiny)`: at h = +-1 with no
 /// absorption `f = t = 1` and the true limit is 0, which the numerator gives exactly. For
-/// `t = 1` the four terms sum to 1.
+/// `t = 1` the four terms sum to 1. `A_2` and `A_3+`, which fall with the square and the
+/// cube of `t`, are 0 on the SIMD lanes where they are negligible
+/// ([`Real::negligible_to_zero`]), as is the transmittance
+/// [`FibrePath::transmittance`](crate::azimuthal::FibrePath::transmittance) gives.
 #[inline(always)]
 pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES_WITH_RESIDUAL] {
     const FUNCTION: ShaderFunction = crate::shader_function!(
@@ -31,8 +34,8 @@ pub fn attenuations_from_fresnel<R: Real>(f: R, t: R) -> [R; LOBES_WITH_RESIDUAL
             let a0 = f;
             let a1 = (one - f).sqr() * t;
             let ft = f * t;
-            let a2 = a1 * ft;
-            let a3 = a2 * ft / (one - ft).max(TINY.get());
+            let a2 = (a1 * ft).negligible_to_zero();
+            let a3 = (a2 * ft / (one - ft).max(TINY.get())).negligible_to_zero();
             [a0, a1, a2, a3]
         },
     )

@@ -4,7 +4,9 @@ use crate::real::{map_array, pi, Real, ShaderLoop, Shape};
 /// is `e / (s (1 + e)^2)`. Written with `|x|` so the exponential never overflows.
 #[inline(always)]
 fn logistic_parts<R: Real>(x: R, inv_scale: R) -> (R, R) {
-    let e = (-x.abs() * inv_scale).exp_of_nonpositive();
+    let e = (-x.abs() * inv_scale)
+        .exp_of_nonpositive()
+        .negligible_to_zero();
     (e, (R::c(1.0) + e).sqr())
 }
 

@@ -136,7 +136,9 @@ impl<R: Real> FibrePath<R> {
     /// per unit radius.
     #[inline(always)]
     pub fn transmittance(&self, sigma_a: R) -> R {
-        (-sigma_a * self.segment_length).exp_of_nonpositive()
+        (-sigma_a * self.segment_length)
+            .exp_of_nonpositive()
+            .negligible_to_zero()
     }
 
     /// The attenuations `[A_0, A_1, A_2, A_3+]` of the path for absorption `sigma_a` per unit

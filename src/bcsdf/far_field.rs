@@ -305,11 +305,11 @@ impl<R: Real> Offsets<R> for OffsetNodes<R> {
         &self,
         hair: &ChiangHair<R, O>,
         at: Outgoing<R>,
-        m: [R; LOBES_WITH_RESIDUAL],
+        longitudinal: impl FnOnce() -> [R; LOBES_WITH_RESIDUAL],
     ) -> LobeTerms<R> {
         let (channels, choice) = self.averaged::<O, WITH_PDF>(hair, at);
         LobeTerms {
-            weight: m,
+            weight: longitudinal(),
             channels,
             choice,
         }

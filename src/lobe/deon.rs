@@ -83,7 +83,7 @@ impl<R: Real> DeonLobe<R> {
                 let one_minus_cos = sin_sum * sin_sum / (one + abs_cos) + (abs_cos - cos_sum);
                 let (scale, shift) = form.i0e_split(cos_cos * self.inv_v);
                 let exponent = (-one_minus_cos).mul_add(self.inv_v, shift);
-                [self.norm * scale * exponent.exp_of_nonpositive()]
+                [self.norm * scale * exponent.exp_of_nonpositive().negligible_to_zero()]
             },
         )[0]
     }

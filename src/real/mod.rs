@@ -46,6 +46,10 @@ pub use traced::{
     Traced, TracedMask, Unary, NO_COORDINATE, TEXTURE_CHANNELS,
 };
 
+/// e^-36 (2.3e-16): the factors in [0, 1] below it are exactly 0 on the SIMD lanes
+/// ([`Real::negligible_to_zero`]).
+pub const NEGLIGIBLE: f64 = 2.319_522_830_243_569_4e-16;
+
 /// A scalar (or a SIMD vector of scalars, or a symbolic value) shading code computes with.
 ///
 /// Every method is a pure function of its arguments. Methods are named after their WGSL
@@ -88,6 +92,22 @@ pub trait Real:
     #[inline(always)]
     fn exp_of_nonpositive(self) -> Self {
         self.exp()
+    }
+    /// `self`, a factor in [0, 1] of a product (the decay of a lobe or a distribution, a
+    /// transmittance, an attenuation), or exactly 0 on the SIMD lanes where it is below
+    /// [`NEGLIGIBLE`] (e^-36, 2.3e-16 of the factor's largest value). Two such factors times
+    /// the lobes' normalisations (at least 0.02 together) are 0 or above 1e-33, so the
+    /// products the lobe sums round stay above the smallest normal `f32` (1.2e-38). Products
+    /// of decays had come out subnormal, and an x86 core takes a microcode assist of a
+    /// hundred cycles or more for every instruction that gives a subnormal (README, speed
+    /// section: the Chiang batch spent a fifth of its time so at the speed benchmark's
+    /// material). What is dropped is below 2.3e-16 of the lobe's scale; e^-24 was too coarse
+    /// (lobes of scale 50 lost more than the batch tests' absolute floor of 1e-6 allows). The
+    /// identity in scalar and traced code: the traced graph is the scalar `f32` code bit for
+    /// bit, and GPUs flush subnormals themselves.
+    #[inline(always)]
+    fn negligible_to_zero(self) -> Self {
+        self
     }
     /// Natural logarithm; callers guarantee a positive argument.
     fn ln(self) -> Self;

@@ -11,7 +11,7 @@
 
 #[cfg(target_arch = "x86_64")]
 use super::isa::{Avx2Lanes, Avx512Lanes};
-use super::Real;
+use super::{Real, NEGLIGIBLE};
 use crate::lut::SharedTable;
 use wide::{f32x16, f32x8, i32x16, i32x8};
 
@@ -308,6 +308,11 @@ macro_rules! impl_real_for_lanes {
             #[inline(always)]
             fn exp_of_nonpositive(self) -> Self {
                 lean_exp_of_nonpositive!($t, self)
+            }
+            /// One comparison and one `and` of the lanes; NaN gives 0.
+            #[inline(always)]
+            fn negligible_to_zero(self) -> Self {
+                $t::splat(NEGLIGIBLE as f32).simd_le(self) & self
             }
             #[inline(always)]
             fn ln(self) -> Self {
@@ -659,6 +664,43 @@ mod tests {
         // Elsewhere it is exp itself.
         assert_eq!((-3.5_f32).exp_of_nonpositive(), (-3.5_f32).exp());
         assert!(Real::exp_of_nonpositive(f64::NAN).is_nan());
+    }
+
+    /// `negligible_to_zero` on every lane type the CPU runs: the value itself, bit for bit,
+    /// from `NEGLIGIBLE` (e^-36 rounded to `f32`) up, including 1 and infinity; exactly 0
+    /// below it (subnormals and signed zeros included) and for NaN. The identity in scalar
+    /// code.
+    #[test]
+    fn negligible_factors_are_zero_on_lanes() {
+        fn check<L: Real + From<[f32; N]>, const N: usize>(to_array: impl Fn(L) -> [f32; N]) {
+            let floor = NEGLIGIBLE as f32;
+            let mut xs = vec![floor, f32::from_bits(floor.to_bits() + 1), 1e-15, 0.5, 1.0];
+            xs.extend([
+                f32::INFINITY,
+                f32::from_bits(floor.to_bits() - 1),
+                1e-20,
+                1e-39,
+            ]);
+            xs.extend([f32::MIN_POSITIVE, 0.0, -0.0, -1.0, f32::NAN]);
+            while !xs.len().is_multiple_of(N) {
+                xs.push(0.25);
+            }
+            for chunk in xs.chunks_exact(N) {
+                let a: [f32; N] = chunk.try_into().unwrap();
+                let got = to_array(L::from(a).negligible_to_zero());
+                for (x, g) in a.iter().zip(got) {
+                    let want = if *x >= floor { x.to_bits() } else { 0 };
+                    assert_eq!(g.to_bits(), want, "{x:e}: {g:e}");
+                }
+            }
+        }
+        on_every_lane_type!(check);
+        assert_eq!((-36.0_f64).exp(), NEGLIGIBLE);
+        assert_eq!(
+            Real::negligible_to_zero(1e-39_f32).to_bits(),
+            1e-39_f32.to_bits()
+        );
+        assert_eq!(Real::negligible_to_zero(1e-300_f64), 1e-300);
     }
 
     /// `asin_with_cos` on every lane type the CPU runs, with the cosine computed in `f32` as
