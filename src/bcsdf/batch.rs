@@ -21,8 +21,9 @@
 //! 100k random inputs plus the hard cases: both are within 9e-6 of `f64` (relative to the value
 //! plus 1e-6), and within 1.2e-5 of each other. The lanes also set the factors of a lobe sum
 //! that fall below e^-36 (decays, transmittances, attenuations) to exactly 0
-//! ([`Real::negligible_to_zero`]), so that no product of them is a subnormal number, which
-//! costs an x86 core a microcode assist; what they drop is below 2.3e-16 of a lobe's scale.
+//! ([`Real::negligible_to_zero`]), so that the factors and their products are not subnormal
+//! numbers, each of which costs an x86 core a microcode assist (S itself still is where every
+//! lobe is negligible at once, rarely); what they drop is below 2.3e-16 of a lobe's scale.
 //!
 //! **Tail.** A length that is not a multiple of the lane count is handled by padding the last
 //! chunk with the harmless sample `wi = wo = (0, 1, 0)`, `h = 0` and discarding the padded

@@ -96,8 +96,9 @@ pub trait Real:
     /// `self`, a factor in [0, 1] of a product (the decay of a lobe or a distribution, a
     /// transmittance, an attenuation), or exactly 0 on the SIMD lanes where it is below
     /// [`NEGLIGIBLE`] (e^-36, 2.3e-16 of the factor's largest value). Two such factors times
-    /// the lobes' normalisations (at least 0.02 together) are 0 or above 1e-33, so the
-    /// products the lobe sums round stay above the smallest normal `f32` (1.2e-38). Products
+    /// the lobes' normalisations (at least 0.02 together) are 0 or above 1e-33, so such
+    /// products stay above the smallest normal `f32`, 1.2e-38; only a sum of three-factor
+    /// products, S, can still fall below it, where every term is negligible. Products
     /// of decays had come out subnormal, and an x86 core takes a microcode assist of a
     /// hundred cycles or more for every instruction that gives a subnormal (README, speed
     /// section: the Chiang batch spent a fifth of its time so at the speed benchmark's
